@@ -1,0 +1,12 @@
+#pragma once
+// Each subcommand lives in its own cmd_<name>.cpp and registers itself on the root app. Its
+// callback stores the command's exit code; exceptions are mapped to exit codes in main().
+namespace CLI {
+class App;
+}
+
+namespace meshdev::app {
+
+void add_info_command(CLI::App& root, int& exit_code);
+
+}  // namespace meshdev::app

@@ -1,0 +1,40 @@
+// meshdev: how far one mesh is from another, in geometry and in appearance.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <new>
+
+#include "apps/commands.h"
+#include "apps/exit_codes.h"
+#include "metric/errors.h"
+
+int main(int argc, char** argv) {
+  using namespace meshdev::app;
+  CLI::App app{"meshdev " MESHDEV_VERSION
+               ": mesh comparison with the attribute deviation metric (Roy, Foufou, Truchetet)"};
+  app.set_version_flag("--version", MESHDEV_VERSION);
+  app.require_subcommand(1);
+  int exit_code = kOk;
+  add_info_command(app, exit_code);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kOk : kUsage;
+  } catch (const meshdev::WriteError& e) {
+    std::cerr << "meshdev: error: " << e.what() << '\n';
+    return kWriteError;
+  } catch (const meshdev::IoError& e) {
+    std::cerr << "meshdev: error: " << e.what() << '\n';
+    return kInputError;
+  } catch (const meshdev::InvalidInput& e) {
+    std::cerr << "meshdev: error: " << e.what() << '\n';
+    return kInvalidInput;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "meshdev: error: out of memory\n";
+    return kInternal;
+  } catch (const std::exception& e) {
+    std::cerr << "meshdev: internal error: " << e.what() << '\n';
+    return kInternal;
+  }
+  return exit_code;
+}

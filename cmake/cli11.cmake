@@ -1,0 +1,2 @@
+# CLI11 (Debian: libcli11-dev, header-only). Provides CLI11::CLI11.
+find_package(CLI11 CONFIG REQUIRED)

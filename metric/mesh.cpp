@@ -1,0 +1,101 @@
+#include "metric/mesh.h"
+
+#include <cmath>
+
+#include "metric/errors.h"
+
+namespace meshdev {
+
+const AttributeChannel* TriMesh::channel(std::string_view name) const {
+  for (const auto& c : channels)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+AttributeChannel* TriMesh::channel(std::string_view name) {
+  for (auto& c : channels)
+    if (c.name == name) return &c;
+  return nullptr;
+}
+
+AttributeChannel& TriMesh::add_channel(std::string name, AttributeKind kind, Storage storage,
+                                       int dim) {
+  std::size_t elements = storage == Storage::kPerVertex   ? positions.size()
+                         : storage == Storage::kPerCorner ? 3 * faces.size()
+                                                          : faces.size();
+  AttributeChannel c{std::move(name), kind, storage, dim, std::vector<double>(elements * dim, 0.0)};
+  if (AttributeChannel* existing = channel(c.name)) {
+    *existing = std::move(c);
+    return *existing;
+  }
+  channels.push_back(std::move(c));
+  return channels.back();
+}
+
+void BoundingBox::extend(const Vec3& p) {
+  for (int k = 0; k < 3; ++k) {
+    if (p[k] < min[k]) min[k] = p[k];
+    if (p[k] > max[k]) max[k] = p[k];
+  }
+}
+
+double BoundingBox::diagonal() const { return empty() ? 0.0 : norm(max - min); }
+
+BoundingBox bounding_box(const TriMesh& mesh) {
+  BoundingBox box;
+  if (mesh.faces.empty()) {
+    for (const Vec3& p : mesh.positions) box.extend(p);
+    return box;
+  }
+  std::vector<bool> used = referenced_vertices(mesh);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+    if (used[v]) box.extend(mesh.positions[v]);
+  return box;
+}
+
+double face_area(const TriMesh& mesh, std::size_t f) {
+  const Triangle& t = mesh.faces[f];
+  const Vec3& a = mesh.positions[t[0]];
+  return 0.5 * norm(cross(mesh.positions[t[1]] - a, mesh.positions[t[2]] - a));
+}
+
+double surface_area(const TriMesh& mesh) {
+  double area = 0.0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) area += face_area(mesh, f);
+  return area;
+}
+
+std::vector<bool> referenced_vertices(const TriMesh& mesh) {
+  std::vector<bool> used(mesh.positions.size(), false);
+  for (const Triangle& t : mesh.faces)
+    for (std::uint32_t v : t)
+      if (v < used.size()) used[v] = true;
+  return used;
+}
+
+void validate(const TriMesh& mesh, const std::string& label) {
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+    if (!is_finite(mesh.positions[v]))
+      throw InvalidInput(label + ": vertex " + std::to_string(v) + " has a non-finite coordinate");
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    for (std::uint32_t v : mesh.faces[f])
+      if (v >= mesh.positions.size())
+        throw InvalidInput(label + ": face " + std::to_string(f) + " uses vertex " +
+                           std::to_string(v) + " but the mesh has " +
+                           std::to_string(mesh.positions.size()) + " vertices");
+  for (const AttributeChannel& c : mesh.channels) {
+    std::size_t elements = c.storage == Storage::kPerVertex   ? mesh.positions.size()
+                           : c.storage == Storage::kPerCorner ? 3 * mesh.faces.size()
+                                                              : mesh.faces.size();
+    if (c.dim <= 0 || c.values.size() != elements * static_cast<std::size_t>(c.dim))
+      throw InvalidInput(label + ": attribute '" + c.name + "' has " +
+                         std::to_string(c.values.size()) + " values, expected " +
+                         std::to_string(elements) + " x " + std::to_string(c.dim));
+    for (std::size_t i = 0; i < c.values.size(); ++i)
+      if (!std::isfinite(c.values[i]))
+        throw InvalidInput(label + ": attribute '" + c.name + "' element " +
+                           std::to_string(i / c.dim) + " is not finite");
+  }
+}
+
+}  // namespace meshdev

@@ -1,0 +1,91 @@
+#pragma once
+// The compact indexed triangle mesh the metric works on: double positions, triangles, and named
+// attribute channels of any dimension stored per vertex, per face corner (wedge) or per face.
+// Readers (metric/io) produce it; simplifiers convert to and from their own types at their
+// boundary. Units are those of the file (absolute).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "metric/vec3.h"
+
+namespace meshdev {
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+// Where an attribute channel stores its values.
+enum class Storage : std::uint8_t {
+  kPerVertex,  // values[v * dim + k]
+  kPerCorner,  // values[(3 * f + c) * dim + k], c = corner 0..2 of triangle f (UV seams, hard normals)
+  kPerFace,    // values[f * dim + k] (flat over the triangle)
+};
+
+// What a channel means; decides how its deviation is measured (docs/metric.md).
+enum class AttributeKind : std::uint8_t {
+  kNormal,    // dim 3, need not be unit length in the file; normalised when evaluated
+  kColor,     // dim 3, sRGB in [0, 1] (uchar colours are divided by 255)
+  kTexCoord,  // dim 2, (u, v)
+  kScalar,    // any other named property of any dim (quality, confidence, temperature, ...)
+};
+
+struct AttributeChannel {
+  std::string name;  // "normal", "color", "texcoord", or the file's own property name
+  AttributeKind kind = AttributeKind::kScalar;
+  Storage storage = Storage::kPerVertex;
+  int dim = 1;
+  std::vector<double> values;
+
+  std::size_t element_count() const { return dim > 0 ? values.size() / dim : 0; }
+  const double* element(std::size_t i) const { return values.data() + i * dim; }
+  double* element(std::size_t i) { return values.data() + i * dim; }
+};
+
+struct TriMesh {
+  std::vector<Vec3> positions;
+  std::vector<Triangle> faces;
+  std::vector<AttributeChannel> channels;
+
+  // Provenance, filled by the readers.
+  std::string source_file;          // the path it was read from ("" if built in code)
+  std::size_t source_polygons = 0;  // polygons in the file before triangulation
+  std::string texture_file;         // map_Kd / "comment TextureFile", resolved against the file's folder
+
+  std::size_t num_vertices() const { return positions.size(); }
+  std::size_t num_faces() const { return faces.size(); }
+
+  // The channel with this name, or nullptr.
+  const AttributeChannel* channel(std::string_view name) const;
+  AttributeChannel* channel(std::string_view name);
+  // Adds (or replaces) a zero-filled channel sized for the current vertex/face counts.
+  AttributeChannel& add_channel(std::string name, AttributeKind kind, Storage storage, int dim);
+};
+
+struct BoundingBox {
+  Vec3 min{+1e300, +1e300, +1e300};
+  Vec3 max{-1e300, -1e300, -1e300};
+
+  bool empty() const { return min.x > max.x; }
+  void extend(const Vec3& p);
+  double diagonal() const;  // 0 for an empty box
+};
+
+// Box of the vertices used by a face (of all vertices if the mesh has no faces). O(V + F).
+BoundingBox bounding_box(const TriMesh& mesh);
+
+// Area of triangle f (0 for a degenerate one). O(1).
+double face_area(const TriMesh& mesh, std::size_t f);
+
+// Sum of the triangle areas, in file units squared. O(F).
+double surface_area(const TriMesh& mesh);
+
+// referenced[v] is true if some face uses vertex v. O(V + F).
+std::vector<bool> referenced_vertices(const TriMesh& mesh);
+
+// Checks the invariants every algorithm relies on: finite positions, face indices in range,
+// channel sizes consistent with their storage, finite channel values. Throws InvalidInput naming
+// `label`, the element and what is wrong. O(V + F + channel sizes).
+void validate(const TriMesh& mesh, const std::string& label);
+
+}  // namespace meshdev
