@@ -31,8 +31,7 @@ class WriteError : public IoError {
 class ParseError : public IoError {
  public:
   ParseError(const std::string& file, const std::string& where, const std::string& what)
-      : IoError(file + ": " + (where.empty() ? std::string() : where + ": ") + what),
-        file_(file) {}
+      : IoError(file + ": " + (where.empty() ? std::string() : where + ": ") + what), file_(file) {}
   const std::string& file() const { return file_; }
 
  private:

@@ -39,7 +39,9 @@ void BoundingBox::extend(const Vec3& p) {
   }
 }
 
-double BoundingBox::diagonal() const { return empty() ? 0.0 : norm(max - min); }
+double BoundingBox::diagonal() const {
+  return empty() ? 0.0 : norm(max - min);
+}
 
 BoundingBox bounding_box(const TriMesh& mesh) {
   BoundingBox box;

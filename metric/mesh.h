@@ -18,7 +18,8 @@ using Triangle = std::array<std::uint32_t, 3>;
 // Where an attribute channel stores its values.
 enum class Storage : std::uint8_t {
   kPerVertex,  // values[v * dim + k]
-  kPerCorner,  // values[(3 * f + c) * dim + k], c = corner 0..2 of triangle f (UV seams, hard normals)
+  kPerCorner,  // values[(3 * f + c) * dim + k], c = corner 0..2 of triangle f (UV seams, hard
+               // normals)
   kPerFace,    // values[f * dim + k] (flat over the triangle)
 };
 
@@ -50,7 +51,7 @@ struct TriMesh {
   // Provenance, filled by the readers.
   std::string source_file;          // the path it was read from ("" if built in code)
   std::size_t source_polygons = 0;  // polygons in the file before triangulation
-  std::string texture_file;         // map_Kd / "comment TextureFile", resolved against the file's folder
+  std::string texture_file;  // map_Kd / "comment TextureFile", resolved against the file's folder
 
   std::size_t num_vertices() const { return positions.size(); }
   std::size_t num_faces() const { return faces.size(); }

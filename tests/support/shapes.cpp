@@ -1,5 +1,6 @@
 #include "tests/support/shapes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -7,7 +8,9 @@
 
 namespace meshdev::test {
 
-TriMesh square(double size, double z) { return grid(1, size, z); }
+TriMesh square(double size, double z) {
+  return grid(1, size, z);
+}
 
 TriMesh grid(int n, double size, double z) {
   TriMesh m;
@@ -36,11 +39,11 @@ TriMesh icosahedron() {
   const double t = (1.0 + std::sqrt(5.0)) / 2.0;
   const double s = 1.0 / std::sqrt(1.0 + t * t);
   const double a = s, b = t * s;
-  m.positions = {{-a, b, 0}, {a, b, 0},  {-a, -b, 0}, {a, -b, 0}, {0, -a, b}, {0, a, b},
+  m.positions = {{-a, b, 0},  {a, b, 0},  {-a, -b, 0}, {a, -b, 0}, {0, -a, b},  {0, a, b},
                  {0, -a, -b}, {0, a, -b}, {b, 0, -a},  {b, 0, a},  {-b, 0, -a}, {-b, 0, a}};
-  m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+  m.faces = {{0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
              {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-             {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+             {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
   m.source_polygons = 20;
   return m;
 }
@@ -83,8 +86,10 @@ TriMesh random_soup(int triangles, std::uint64_t seed, double degenerate_fractio
     Vec3 b = a + 0.2 * Vec3{uniform() - 0.5, uniform() - 0.5, uniform() - 0.5};
     Vec3 c = a + 0.2 * Vec3{uniform() - 0.5, uniform() - 0.5, uniform() - 0.5};
     double kind = uniform();
-    if (kind < degenerate_fraction / 2) c = a + 0.37 * (b - a);  // collinear: zero area
-    else if (kind < degenerate_fraction) c = b;                   // repeated corner
+    if (kind < degenerate_fraction / 2)
+      c = a + 0.37 * (b - a);  // collinear: zero area
+    else if (kind < degenerate_fraction)
+      c = b;  // repeated corner
     auto base = static_cast<std::uint32_t>(m.positions.size());
     m.positions.insert(m.positions.end(), {a, b, c});
     m.faces.push_back({base, base + 1, base + 2});

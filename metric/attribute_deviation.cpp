@@ -1,0 +1,101 @@
+#include "metric/attribute_deviation.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cassert>
+#include <limits>
+
+namespace meshdev {
+namespace {
+
+// Measures grouped by the channel they compare, so each channel is interpolated once per point.
+struct ChannelGroup {
+  const AttributeChannel* reference = nullptr;
+  const AttributeChannel* target = nullptr;
+  std::vector<std::size_t> measures;
+};
+
+std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const PreparedMesh& target,
+                                         const std::vector<Measure>& measures) {
+  std::vector<ChannelGroup> groups;
+  for (std::size_t m = 1; m < measures.size(); ++m) {
+    const AttributeChannel* ca = reference.channel(measures[m].channel);
+    const AttributeChannel* cb = target.channel(measures[m].channel);
+    assert(ca != nullptr && cb != nullptr && ca->dim == cb->dim);
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const ChannelGroup& g) { return g.reference == ca; });
+    if (it == groups.end()) {
+      groups.push_back({ca, cb, {}});
+      it = groups.end() - 1;
+    }
+    it->measures.push_back(m);
+  }
+  return groups;
+}
+
+constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutive = coherent)
+
+}  // namespace
+
+SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
+                                    const PreparedMesh& target, const NearestPointIndex& index,
+                                    const std::vector<Measure>& measures,
+                                    const DeviationOptions& options) {
+  assert(!measures.empty() && measures[0].kind == MeasureKind::kGeometry);
+  const std::size_t n = samples.samples.size();
+  SampleDeviations out;
+  out.values.assign(measures.size(), std::vector<double>(n, 0.0));
+  out.nearest.resize(n);
+  out.tie_count.resize(n);
+  const std::vector<ChannelGroup> groups = group_measures(reference, target, measures);
+  const TriMesh& ref = *reference.mesh;
+  const TriMesh& tgt = *target.mesh;
+  const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<SurfaceHit> ties;
+    std::vector<double> best;
+    double fa[16], fb[16];
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
+      std::uint32_t previous = kNoFace;
+      const std::size_t end = std::min(n, static_cast<std::size_t>(chunk + 1) * kChunk);
+      for (std::size_t i = static_cast<std::size_t>(chunk) * kChunk; i < end; ++i) {
+        const Sample& s = samples.samples[i];
+        Vec3 corners[3];
+        QueryHint hint;
+        if (s.face != kNoFace) {
+          for (int c = 0; c < 3; ++c) corners[c] = ref.positions[ref.faces[s.face][c]];
+          hint.source = corners;
+          hint.source_bary = s.bary;
+        }
+        hint.start_face = previous;
+        const double distance = index.find(s.point, hint, ties);
+        assert(!ties.empty());
+        previous = ties.front().face;
+        out.nearest[i] = ties.front();
+        out.tie_count[i] = static_cast<std::uint32_t>(ties.size());
+        out.values[0][i] = distance;
+
+        for (const ChannelGroup& g : groups) {
+          interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
+          best.assign(g.measures.size(), std::numeric_limits<double>::infinity());
+          for (const SurfaceHit& h : ties) {
+            interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
+            for (std::size_t k = 0; k < g.measures.size(); ++k)
+              best[k] = std::min(best[k], attribute_distance(measures[g.measures[k]].kind, fa, fb,
+                                                             g.reference->dim));
+          }
+          for (std::size_t k = 0; k < g.measures.size(); ++k)
+            out.values[g.measures[k]][i] = best[k];
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace meshdev

@@ -1,0 +1,33 @@
+#pragma once
+// The attribute deviation of every sample (paper Eq. 3-4): for sample p on the reference mesh,
+// the nearest points p' on the target surface and, per measure, d_i(p) = ||f_i(p) - f_i(p')||,
+// the minimum over all equidistant p' (the paper's tie rule, §3.1).
+#include <cstdint>
+#include <vector>
+
+#include "metric/attributes.h"
+#include "metric/nearest_point.h"
+#include "metric/sampling.h"
+
+namespace meshdev {
+
+struct DeviationOptions {
+  int threads = 0;  // OpenMP threads; 0 = OpenMP's default (OMP_NUM_THREADS or all cores)
+};
+
+struct SampleDeviations {
+  std::vector<std::vector<double>> values;  // values[measure][sample], measure 0 = geometry
+  std::vector<SurfaceHit> nearest;          // per sample: the tie with the lowest face index
+  std::vector<std::uint32_t> tie_count;     // per sample: number of equidistant target faces
+};
+
+// Deviation of each sample of `reference` against `target` (whose index is `index`), for every
+// measure of `measures` (measure 0 must be geometry). Units: those of each measure (absolute).
+// Results do not depend on the thread count: each sample's result depends only on the sample.
+// O(samples x query cost x (1 + ties x attribute dims)).
+SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
+                                    const PreparedMesh& target, const NearestPointIndex& index,
+                                    const std::vector<Measure>& measures,
+                                    const DeviationOptions& options = {});
+
+}  // namespace meshdev

@@ -1,0 +1,175 @@
+#include "metric/attributes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "metric/color_space.h"
+#include "metric/errors.h"
+#include "metric/nearest_point.h"
+#include "metric/vertex_normals.h"
+
+namespace meshdev {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr int kMaxDim = 16;
+
+AttributeChannel computed_normals(const TriMesh& m, NormalWeighting w) {
+  std::vector<Vec3> n = compute_vertex_normals(m, w);
+  AttributeChannel c{"normal", AttributeKind::kNormal, Storage::kPerVertex, 3, {}};
+  c.values.reserve(3 * n.size());
+  for (const Vec3& v : n) c.values.insert(c.values.end(), {v.x, v.y, v.z});
+  return c;
+}
+
+void add_channel_measures(const AttributeChannel& c, std::vector<Measure>& out) {
+  switch (c.kind) {
+    case AttributeKind::kNormal:
+      out.push_back({"normal", MeasureKind::kNormalEuclidean, c.name, "unit-normal distance"});
+      out.push_back({"normal_angle", MeasureKind::kNormalAngle, c.name, "degrees"});
+      break;
+    case AttributeKind::kColor:
+      out.push_back({c.name, MeasureKind::kColorRgb, c.name, "sRGB distance, components in [0,1]"});
+      out.push_back({c.name + "_de76", MeasureKind::kColorDeltaE76, c.name, "CIE76 delta E"});
+      out.push_back(
+          {c.name + "_de2000", MeasureKind::kColorDeltaE2000, c.name, "CIEDE2000 delta E"});
+      break;
+    case AttributeKind::kTexCoord:
+      out.push_back({c.name, MeasureKind::kTexCoord, c.name, "UV units"});
+      break;
+    case AttributeKind::kScalar:
+      out.push_back({c.name, MeasureKind::kScalar, c.name, "attribute units"});
+      break;
+  }
+}
+
+Vec3 unit_or_zero(const double* v) {
+  const Vec3 n{v[0], v[1], v[2]};
+  const double len = norm(n);
+  return len > 0.0 ? (1.0 / len) * n : Vec3{};
+}
+
+}  // namespace
+
+const AttributeChannel* PreparedMesh::channel(std::string_view name) const {
+  for (const AttributeChannel& c : computed)
+    if (c.name == name) return &c;
+  return mesh->channel(name);
+}
+
+NormalSource parse_normal_source(const std::string& text) {
+  if (text == "auto") return NormalSource::kAuto;
+  if (text == "file") return NormalSource::kFile;
+  if (text == "uniform" || text == "average") return NormalSource::kUniform;
+  if (text == "area") return NormalSource::kArea;
+  if (text == "angle") return NormalSource::kAngle;
+  throw InvalidInput("unknown normal source '" + text + "' (use auto, file, uniform, area, angle)");
+}
+
+AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const AttributeOptions& options,
+                              const std::string& label_a, const std::string& label_b) {
+  AttributePlan plan;
+  plan.a.mesh = &a;
+  plan.b.mesh = &b;
+  plan.measures.push_back({"geometry", MeasureKind::kGeometry, "", "mesh units"});
+
+  std::vector<std::string> wanted = options.attributes;
+  const bool automatic = wanted.empty();
+  if (automatic) {
+    wanted.push_back("normal");
+    for (const AttributeChannel& c : a.channels) {
+      const AttributeChannel* other = b.channel(c.name);
+      if (c.name != "normal" && other != nullptr && other->dim == c.dim && other->kind == c.kind)
+        wanted.push_back(c.name);
+    }
+  }
+
+  std::vector<std::string> done;
+  for (const std::string& name : wanted) {
+    if (name == "geometry" || std::find(done.begin(), done.end(), name) != done.end()) continue;
+    done.push_back(name);
+    if (name == "normal") {
+      const bool both_have = a.channel("normal") != nullptr && b.channel("normal") != nullptr;
+      NormalSource source = options.normals;
+      if (source == NormalSource::kAuto)
+        source = both_have ? NormalSource::kFile : NormalSource::kUniform;
+      if (source == NormalSource::kFile) {
+        if (!both_have)
+          throw InvalidInput("normals from the file were requested but " +
+                             (a.channel("normal") ? label_b : label_a) + " has none");
+        plan.normal_source = "file";
+      } else {
+        const NormalWeighting w = source == NormalSource::kArea    ? NormalWeighting::kArea
+                                  : source == NormalSource::kAngle ? NormalWeighting::kAngle
+                                                                   : NormalWeighting::kUniform;
+        plan.a.computed.push_back(computed_normals(a, w));
+        plan.b.computed.push_back(computed_normals(b, w));
+        plan.normal_source = source == NormalSource::kArea ? "computed (area-weighted)"
+                             : source == NormalSource::kAngle
+                                 ? "computed (angle-weighted)"
+                                 : "computed (uniform average, as the paper)";
+      }
+      add_channel_measures(*plan.a.channel("normal"), plan.measures);
+      continue;
+    }
+    const AttributeChannel* ca = a.channel(name);
+    const AttributeChannel* cb = b.channel(name);
+    if (ca == nullptr || cb == nullptr)
+      throw InvalidInput("attribute '" + name + "' was requested but " +
+                         (ca == nullptr ? label_a : label_b) + " has no such attribute");
+    if (ca->dim != cb->dim || ca->kind != cb->kind)
+      throw InvalidInput("attribute '" + name + "' has dimension " + std::to_string(ca->dim) +
+                         " on " + label_a + " but " + std::to_string(cb->dim) + " on " + label_b);
+    if (ca->dim > kMaxDim)
+      throw InvalidInput("attribute '" + name + "' has " + std::to_string(ca->dim) +
+                         " components; at most 16 are supported");
+    add_channel_measures(*ca, plan.measures);
+  }
+  return plan;
+}
+
+void interpolate(const AttributeChannel& c, const TriMesh& mesh, std::uint32_t face,
+                 const std::array<double, 3>& bary, std::uint32_t vertex, double* out) {
+  const int dim = c.dim;
+  if (face == kNoFace) {  // a point-cloud vertex: only per-vertex channels exist
+    const double* v = c.element(vertex);
+    for (int k = 0; k < dim; ++k) out[k] = v[k];
+    return;
+  }
+  if (c.storage == Storage::kPerFace) {
+    const double* v = c.element(face);
+    for (int k = 0; k < dim; ++k) out[k] = v[k];
+    return;
+  }
+  const double* v[3];
+  for (int i = 0; i < 3; ++i)
+    v[i] =
+        c.storage == Storage::kPerVertex ? c.element(mesh.faces[face][i]) : c.element(3 * face + i);
+  for (int k = 0; k < dim; ++k) out[k] = bary[0] * v[0][k] + bary[1] * v[1][k] + bary[2] * v[2][k];
+}
+
+double attribute_distance(MeasureKind kind, const double* x, const double* y, int dim) {
+  switch (kind) {
+    case MeasureKind::kNormalEuclidean:
+      return norm(unit_or_zero(x) - unit_or_zero(y));
+    case MeasureKind::kNormalAngle: {
+      const Vec3 n = unit_or_zero(x), m = unit_or_zero(y);
+      if (n == Vec3{} || m == Vec3{}) return 90.0;  // undefined normal: no information
+      return std::atan2(norm(cross(n, m)), dot(n, m)) * 180.0 / kPi;
+    }
+    case MeasureKind::kColorDeltaE76:
+      return delta_e76(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
+    case MeasureKind::kColorDeltaE2000:
+      return delta_e2000(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
+    case MeasureKind::kGeometry:
+    case MeasureKind::kColorRgb:
+    case MeasureKind::kTexCoord:
+    case MeasureKind::kScalar:
+      break;
+  }
+  double s = 0.0;
+  for (int k = 0; k < dim; ++k) s += (x[k] - y[k]) * (x[k] - y[k]);
+  return std::sqrt(s);
+}
+
+}  // namespace meshdev

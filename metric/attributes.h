@@ -1,0 +1,82 @@
+#pragma once
+// Which attributes a comparison measures, how they are evaluated at a point of a mesh, and how
+// two values are compared (the f_i and ||.|| of the paper's Eq. 3).
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "metric/mesh.h"
+
+namespace meshdev {
+
+enum class MeasureKind : std::uint8_t {
+  kGeometry,         // |p - p'|, mesh units
+  kNormalEuclidean,  // |n(p) - n(p')| of unit normals (the paper's measure), in [0, 2]
+  kNormalAngle,      // angle between n(p) and n(p'), degrees in [0, 180]
+  kColorRgb,         // Euclidean sRGB distance, components in [0, 1], so in [0, sqrt(3)]
+  kColorDeltaE76,    // CIE76 ΔE*ab in CIELAB
+  kColorDeltaE2000,  // CIEDE2000 ΔE00
+  kTexCoord,         // Euclidean distance in (u, v)
+  kScalar,           // Euclidean distance of any other channel (absolute value for 1-D)
+};
+
+struct Measure {
+  std::string name;  // column/key name: geometry, normal, normal_angle, color, color_de76, ...
+  MeasureKind kind = MeasureKind::kGeometry;
+  std::string channel;  // channel compared ("" for geometry)
+  std::string unit;     // human-readable unit
+};
+
+// Where normals come from.
+enum class NormalSource : std::uint8_t {
+  kAuto,     // the file's normals if both meshes have them, else computed kUniform on both
+  kFile,     // the files' normals (error if a mesh has none)
+  kUniform,  // computed: plain average of face normals (the paper)
+  kArea,     // computed: area-weighted
+  kAngle,    // computed: angle-weighted
+};
+
+struct AttributeOptions {
+  // Attributes to measure: "geometry", "normal", "color", "texcoord" or a channel name present on
+  // both meshes (e.g. "quality", "temperature"). Empty = automatic: geometry, normal, and every
+  // channel present on both meshes with the same dimension. An explicitly requested attribute
+  // missing on either mesh is an InvalidInput error.
+  std::vector<std::string> attributes;
+  NormalSource normals = NormalSource::kAuto;
+};
+
+// A mesh with the channels a comparison needs: its own plus any computed ones (normals).
+struct PreparedMesh {
+  const TriMesh* mesh = nullptr;
+  std::vector<AttributeChannel> computed;  // looked up before the mesh's own channels
+
+  const AttributeChannel* channel(std::string_view name) const;
+};
+
+// The resolved plan: what is measured and the two prepared meshes.
+struct AttributePlan {
+  std::vector<Measure> measures;  // geometry first
+  PreparedMesh a, b;
+  std::string normal_source;  // what was used: "file", "computed (uniform average)", ...
+};
+
+// Resolves `options` against both meshes (labels name them in errors). Throws InvalidInput for
+// an unknown or one-sided attribute, or dimension mismatch. O(V + F) for computed normals.
+AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const AttributeOptions& options,
+                              const std::string& label_a, const std::string& label_b);
+
+// Value of `channel` at barycentrics `bary` of `face` (kNoFace: at vertex `vertex`, for point
+// clouds), written to out[0..dim). Barycentric interpolation in corner order 0, 1, 2; per-corner
+// channels use the corners of that face, per-face channels are constant on it. O(dim).
+void interpolate(const AttributeChannel& channel, const TriMesh& mesh, std::uint32_t face,
+                 const std::array<double, 3>& bary, std::uint32_t vertex, double* out);
+
+// Deviation between two channel values under `kind` (not kGeometry). O(dim).
+double attribute_distance(MeasureKind kind, const double* x, const double* y, int dim);
+
+// Parses a --normals value: auto, file, uniform (= average), area, angle.
+NormalSource parse_normal_source(const std::string& text);
+
+}  // namespace meshdev

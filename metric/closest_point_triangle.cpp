@@ -1,0 +1,99 @@
+#include "metric/closest_point_triangle.h"
+
+#include <algorithm>
+
+namespace meshdev {
+namespace {
+
+TriangleHit make_hit(const Vec3& p, const Vec3& q, double b0, double b1, double b2) {
+  TriangleHit h;
+  h.point = q;
+  h.sq_distance = squared_norm(p - q);
+  h.bary = {b0, b1, b2};
+  int zeros = (b0 == 0.0) + (b1 == 0.0) + (b2 == 0.0);
+  h.feature = zeros >= 2 ? Feature::kVertex : (zeros == 1 ? Feature::kEdge : Feature::kFace);
+  return h;
+}
+
+// Closest point on segment (a, b); writes t in [0, 1] with point = a + t (b - a).
+Vec3 closest_on_segment(const Vec3& p, const Vec3& a, const Vec3& b, double& t) {
+  const Vec3 ab = b - a;
+  const double len2 = squared_norm(ab);
+  t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  if (t == 0.0) return a;
+  if (t == 1.0) return b;
+  return a + t * ab;
+}
+
+// A degenerate triangle as the union of its edges: best of the three segments.
+TriangleHit closest_on_degenerate(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  double t = 0;
+  Vec3 q = closest_on_segment(p, a, b, t);
+  TriangleHit best = make_hit(p, q, 1.0 - t, t, 0.0);
+  q = closest_on_segment(p, b, c, t);
+  TriangleHit h = make_hit(p, q, 0.0, 1.0 - t, t);
+  if (h.sq_distance < best.sq_distance) best = h;
+  q = closest_on_segment(p, c, a, t);
+  h = make_hit(p, q, t, 0.0, 1.0 - t);
+  if (h.sq_distance < best.sq_distance) best = h;
+  return best;
+}
+
+}  // namespace
+
+const char* feature_name(Feature f) {
+  switch (f) {
+    case Feature::kVertex:
+      return "vertex";
+    case Feature::kEdge:
+      return "edge";
+    case Feature::kFace:
+      return "face";
+  }
+  return "?";
+}
+
+TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a;
+  const double ab2 = squared_norm(ab), ac2 = squared_norm(ac);
+  const double n2 = squared_norm(cross(ab, ac));
+  if (ab2 == 0.0 || ac2 == 0.0 || squared_norm(c - b) == 0.0 || !(n2 > 1e-12 * ab2 * ac2))
+    return closest_on_degenerate(p, a, b, c);
+
+  // Vertex region A.
+  const Vec3 ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return make_hit(p, a, 1, 0, 0);
+  // Vertex region B.
+  const Vec3 bp = p - b;
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return make_hit(p, b, 0, 1, 0);
+  // Edge region AB.
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    const double v = d1 / (d1 - d3);
+    return make_hit(p, a + v * ab, 1.0 - v, v, 0);
+  }
+  // Vertex region C.
+  const Vec3 cp = p - c;
+  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return make_hit(p, c, 0, 0, 1);
+  // Edge region AC.
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    const double w = d2 / (d2 - d6);
+    return make_hit(p, a + w * ac, 1.0 - w, 0, w);
+  }
+  // Edge region BC.
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return make_hit(p, b + w * (c - b), 0, 1.0 - w, w);
+  }
+  // Face interior.
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return make_hit(p, a + v * ab + w * ac, 1.0 - v - w, v, w);
+}
+
+}  // namespace meshdev

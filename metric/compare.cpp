@@ -1,0 +1,134 @@
+#include "metric/compare.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "metric/errors.h"
+
+namespace meshdev {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
+                              const std::vector<Measure>& measures, const CompareOptions& o,
+                              const SamplingOptions& sampling, double diagonal,
+                              const std::string& from_label, const std::string& to_label) {
+  DirectionResult r;
+  r.from = from_label;
+  r.to = to_label;
+  if (to.mesh->faces.empty())
+    throw InvalidInput(to_label + " has no faces: the distance to its surface is undefined" +
+                       std::string(o.direction == Direction::kBoth
+                                       ? " (use --direction forward to sample it only)"
+                                       : ""));
+
+  auto t0 = Clock::now();
+  SampleSet samples = sample_surface(*from.mesh, sampling, diagonal);
+  if (samples.samples.empty())
+    throw InvalidInput(from_label + " gave no samples (no referenced vertices and no faces)");
+  r.seconds_sampling = seconds_since(t0);
+  r.sampling = samples.description;
+  r.step = samples.step;
+  r.samples = samples.samples.size();
+
+  t0 = Clock::now();
+  std::unique_ptr<NearestPointIndex> index = make_nearest_point_index(*to.mesh, o.index, o.ties);
+  r.seconds_index = seconds_since(t0);
+  r.index = index->name();
+
+  t0 = Clock::now();
+  SampleDeviations dev =
+      compute_deviations(samples, from, to, *index, measures, DeviationOptions{o.threads});
+  r.seconds_query = seconds_since(t0);
+
+  std::vector<double> weights(samples.samples.size());
+  for (std::size_t i = 0; i < weights.size(); ++i) weights[i] = samples.samples[i].weight;
+  for (std::size_t m = 0; m < measures.size(); ++m) {
+    r.stats.push_back(compute_statistics(dev.values[m], weights, o.histogram_bins));
+    const std::size_t i = r.stats.back().argmax;
+    const Sample& s = samples.samples[i];
+    const SurfaceHit& h = dev.nearest[i];
+    r.max_location.push_back(
+        {i, s.point, s.kind, s.face, h.point, h.face, h.feature, dev.values[m][i]});
+  }
+  for (std::size_t i = 0; i < dev.nearest.size(); ++i) {
+    ++r.nearest_feature[static_cast<int>(dev.nearest[i].feature)];
+    r.samples_with_ties += dev.tie_count[i] > 1;
+  }
+  if (o.keep_samples) {
+    r.sample_set = std::move(samples);
+    r.deviations = std::move(dev);
+  }
+  return r;
+}
+
+}  // namespace
+
+MeshSummary summarize(const TriMesh& mesh, const std::string& label) {
+  MeshSummary s;
+  s.label = label;
+  s.vertices = mesh.num_vertices();
+  const std::vector<bool> used = referenced_vertices(mesh);
+  s.referenced_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+  s.faces = mesh.num_faces();
+  s.polygons = mesh.source_polygons > 0 ? mesh.source_polygons : mesh.num_faces();
+  s.area = surface_area(mesh);
+  s.box = bounding_box(mesh);
+  for (const AttributeChannel& c : mesh.channels) s.channels.push_back(c.name);
+  return s;
+}
+
+ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
+                                const std::string& label_a, const std::string& label_b) {
+  const auto start = Clock::now();
+  validate(a, label_a);
+  validate(b, label_b);
+  if (a.positions.empty()) throw InvalidInput(label_a + " has no vertices");
+  if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
+
+  ComparisonResult r;
+  r.options = options;
+  r.a = summarize(a, label_a);
+  r.b = summarize(b, label_b);
+  r.diagonal = r.a.box.diagonal();
+
+  AttributePlan plan = plan_attributes(a, b, options.attributes, label_a, label_b);
+  r.measures = plan.measures;
+  r.normal_source = plan.normal_source;
+
+  SamplingOptions sampling = options.sampling;
+  if (sampling.target_count == 0)
+    sampling.target_count = 10 * std::max(a.num_faces(), b.num_faces());
+  if (options.direction != Direction::kBackward)
+    r.forward =
+        run_direction(plan.a, plan.b, r.measures, options, sampling, r.diagonal, label_a, label_b);
+  if (options.direction != Direction::kForward)
+    r.backward =
+        run_direction(plan.b, plan.a, r.measures, options, sampling, r.diagonal, label_b, label_a);
+  if (r.forward && r.backward) {
+    for (std::size_t m = 0; m < r.measures.size(); ++m) {
+      const Statistics& f = r.forward->stats[m];
+      const Statistics& g = r.backward->stats[m];
+      SymmetricStats s;
+      s.min = 0.5 * (f.min + g.min);
+      s.max = 0.5 * (f.max + g.max);
+      s.mean = 0.5 * (f.mean + g.mean);
+      s.rms = 0.5 * (f.rms + g.rms);
+      s.stddev = 0.5 * (f.stddev + g.stddev);
+      s.p50 = 0.5 * (f.p50 + g.p50);
+      s.p90 = 0.5 * (f.p90 + g.p90);
+      s.p95 = 0.5 * (f.p95 + g.p95);
+      s.p99 = 0.5 * (f.p99 + g.p99);
+      s.hausdorff = std::max(f.max, g.max);
+      r.symmetric.push_back(s);
+    }
+  }
+  r.seconds = seconds_since(start);
+  return r;
+}
+
+}  // namespace meshdev

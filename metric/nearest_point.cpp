@@ -1,0 +1,74 @@
+#include "metric/nearest_point.h"
+
+#include <cmath>
+
+#include "metric/errors.h"
+#include "metric/nearest_point_brute.h"
+#include "metric/triangle_bvh.h"
+
+namespace meshdev {
+
+std::unique_ptr<NearestPointIndex> make_nearest_point_index(const TriMesh& target, IndexKind kind,
+                                                            const TieOptions& ties) {
+  if (target.faces.empty())
+    throw InvalidInput("the target mesh has no faces: nearest points on a surface need triangles");
+  if (kind == IndexKind::kBruteForce) return std::make_unique<NearestPointBrute>(target, ties);
+  return std::make_unique<TriangleBvh>(target, ties);
+}
+
+namespace detail {
+namespace {
+
+// perm[i] = j such that corner i of the target triangle equals source corner j; false if the
+// two triangles do not have the same three corners.
+bool match_corners(const Vec3* source, const Vec3& a, const Vec3& b, const Vec3& c, int perm[3]) {
+  const Vec3* corners[3] = {&a, &b, &c};
+  bool used[3] = {false, false, false};
+  for (int i = 0; i < 3; ++i) {
+    perm[i] = -1;
+    for (int j = 0; j < 3; ++j)
+      if (!used[j] && *corners[i] == source[j]) {
+        perm[i] = j;
+        used[j] = true;
+        break;
+      }
+    if (perm[i] < 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties)
+    : mesh(&m), tie_relative(ties.relative) {
+  const double diag = bounding_box(m).diagonal();
+  tie_absolute = ties.absolute_fraction * diag;
+  exact_check_sq = (1e-9 * diag) * (1e-9 * diag);
+}
+
+SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const {
+  const Triangle& t = mesh->faces[face];
+  const Vec3& a = mesh->positions[t[0]];
+  const Vec3& b = mesh->positions[t[1]];
+  const Vec3& c = mesh->positions[t[2]];
+  TriangleHit h = closest_point_on_triangle(p, a, b, c);
+  SurfaceHit s{face, h.sq_distance, h.bary, h.feature, h.point};
+  int perm[3];
+  if (hint.source != nullptr && s.sq_distance <= exact_check_sq &&
+      match_corners(hint.source, a, b, c, perm)) {
+    s.sq_distance = 0.0;
+    s.point = p;
+    for (int i = 0; i < 3; ++i) s.bary[i] = hint.source_bary[perm[i]];
+    int zeros = (s.bary[0] == 0.0) + (s.bary[1] == 0.0) + (s.bary[2] == 0.0);
+    s.feature = zeros >= 2 ? Feature::kVertex : (zeros == 1 ? Feature::kEdge : Feature::kFace);
+  }
+  return s;
+}
+
+double FaceEvaluator::limit_sq(double best_sq) const {
+  const double limit = std::sqrt(best_sq) * (1.0 + tie_relative) + tie_absolute;
+  return limit * limit;
+}
+
+}  // namespace detail
+}  // namespace meshdev

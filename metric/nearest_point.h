@@ -1,0 +1,87 @@
+#pragma once
+// Nearest point on a triangle mesh's surface, with ALL equidistant candidates (the paper's tie
+// rule needs them). Two implementations answer the same queries with the same numbers: the BVH
+// (triangle_bvh.h) and the brute-force oracle (nearest_point_brute.h).
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "metric/closest_point_triangle.h"
+#include "metric/mesh.h"
+
+namespace meshdev {
+
+inline constexpr std::uint32_t kNoFace = std::numeric_limits<std::uint32_t>::max();
+
+// One candidate nearest point: a face of the target, the closest point on it and where it lies.
+struct SurfaceHit {
+  std::uint32_t face = kNoFace;
+  double sq_distance = 0;               // absolute units^2
+  std::array<double, 3> bary{1, 0, 0};  // on the target face's corners 0, 1, 2
+  Feature feature = Feature::kVertex;
+  Vec3 point;
+};
+
+// When two candidates count as equally near (docs/metric.md "Ties"): a face is a tie when its
+// distance d satisfies d <= d_min (1 + relative) + absolute, absolute = absolute_fraction x the
+// target's bounding-box diagonal. Rounding makes exactly-equal distances rare, so a tolerance is
+// needed; 1e-9 relative is far above double rounding (1e-16) and far below any real difference.
+struct TieOptions {
+  double relative = 1e-9;            // relative to the minimum distance
+  double absolute_fraction = 1e-12;  // of the target's bbox diagonal (covers d_min = 0)
+};
+
+// What a query may know beyond its position.
+struct QueryHint {
+  // The corners of the reference-mesh triangle the query was sampled on, and its barycentric
+  // coordinates there. If the target has a triangle with bitwise-identical corners (in any
+  // order), the query lies on it exactly: distance 0, barycentrics carried over. This removes the
+  // 1e-16 rounding of re-projecting a sample onto its own triangle, so identical meshes compare
+  // to exactly 0 (reliability.md §6.3).
+  const Vec3* source = nullptr;  // 3 corners, or nullptr
+  std::array<double, 3> source_bary{1, 0, 0};
+  // A target face tested first (e.g. the previous sample's nearest). Only gives an early upper
+  // bound: results do not depend on it.
+  std::uint32_t start_face = kNoFace;
+};
+
+// A nearest-point index over one target mesh. Thread-safe for concurrent queries.
+class NearestPointIndex {
+ public:
+  virtual ~NearestPointIndex() = default;
+  virtual std::string name() const = 0;
+
+  // Fills `ties` with every face within the tie tolerance of the minimum distance from p,
+  // sorted by face index (so ties.front() is deterministic), and returns the minimum distance
+  // (absolute). Precondition: the target has at least one face (checked at construction).
+  virtual double find(const Vec3& p, const QueryHint& hint,
+                      std::vector<SurfaceHit>& ties) const = 0;
+};
+
+enum class IndexKind { kBvh, kBruteForce };
+
+// Builds the index of the given kind over `target` (kept by reference: it must outlive the
+// index). Throws InvalidInput if the target has no faces.
+std::unique_ptr<NearestPointIndex> make_nearest_point_index(const TriMesh& target, IndexKind kind,
+                                                            const TieOptions& ties = {});
+
+namespace detail {
+
+// The shared per-face evaluation and tie arithmetic, so both indexes compute identical numbers.
+struct FaceEvaluator {
+  const TriMesh* mesh = nullptr;
+  double tie_relative = 0;
+  double tie_absolute = 0;    // absolute units
+  double exact_check_sq = 0;  // hits closer than this are checked for an identical triangle
+
+  FaceEvaluator(const TriMesh& m, const TieOptions& ties);
+  SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
+  // Squared tie limit for a minimum squared distance.
+  double limit_sq(double best_sq) const;
+};
+
+}  // namespace detail
+}  // namespace meshdev

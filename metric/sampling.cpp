@@ -1,0 +1,301 @@
+#include "metric/sampling.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "metric/errors.h"
+
+namespace meshdev {
+namespace {
+
+constexpr std::size_t kMaxSamples = std::size_t{1} << 31;  // refuse steps that would exhaust memory
+// Grid points within 1e-9 steps of an edge count as on it (0.9 / 0.1 is 8.999999999999998).
+constexpr double kGridSlack = 1e-9;
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// A uniform double in [0, 1) that depends only on (seed, face, k).
+double unit_random(std::uint64_t seed, std::uint64_t face, std::uint64_t k) {
+  const std::uint64_t h = splitmix64(splitmix64(splitmix64(seed) ^ face) ^ k);
+  return static_cast<double>(h >> 11) * 0x1p-53;
+}
+
+// Calls fn(s, t) for every scan-conversion point of triangle (a,b,c): barycentric weights s on
+// b and t on c (point = a + s·AB + t·AC). Row i runs along AC at s = iΔ/|AB|.
+template <class Fn>
+void for_each_scan_point(const Vec3& a, const Vec3& b, const Vec3& c, double step, Fn&& fn) {
+  const double lab = norm(b - a), lac = norm(c - a);
+  const std::size_t nu =
+      lab > 0.0 ? static_cast<std::size_t>(std::floor(lab / step + kGridSlack)) : 0;
+  for (std::size_t i = 0; i <= nu; ++i) {
+    const double s = lab > 0.0 ? static_cast<double>(i) * step / lab : 0.0;
+    const double rest = 1.0 - s;
+    if (rest < 0.0) break;
+    const std::size_t nv =
+        lac > 0.0 ? static_cast<std::size_t>(std::floor(rest * lac / step + kGridSlack)) : 0;
+    for (std::size_t j = 0; j <= nv; ++j) {
+      const double t = lac > 0.0 ? static_cast<double>(j) * step / lac : 0.0;
+      fn(s, std::min(t, rest));
+    }
+  }
+}
+
+std::size_t scan_total(const TriMesh& m, double step) {
+  std::size_t total = 0;
+  for (const Triangle& t : m.faces) {
+    total += scan_conversion_count(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], step);
+    if (total > kMaxSamples) return total;
+  }
+  return total;
+}
+
+// Δ whose scan-conversion count is closest to `target` (bisection; the count falls as Δ grows).
+double solve_step(const TriMesh& m, std::size_t target) {
+  double sum = 0.0;
+  for (const Triangle& t : m.faces)
+    sum += 0.5 * norm(m.positions[t[1]] - m.positions[t[0]]) *
+           norm(m.positions[t[2]] - m.positions[t[0]]);
+  if (!(sum > 0.0)) return 1.0;  // every face degenerate: each gets its corner only
+  double guess = std::sqrt(sum / static_cast<double>(target));
+  double lo = guess / 4, hi = guess * 4;
+  while (scan_total(m, lo) < target && lo > guess * 1e-6) lo /= 4;
+  while (scan_total(m, hi) > target && hi < guess * 1e6) hi *= 4;
+  double best = guess;
+  double best_err = 1e300;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    const std::size_t n = scan_total(m, mid);
+    const double err = std::fabs(static_cast<double>(n) - static_cast<double>(target));
+    if (err < best_err) {
+      best_err = err;
+      best = mid;
+    }
+    if (err <= 0.002 * static_cast<double>(target)) break;
+    (n > target ? lo : hi) = mid;
+  }
+  return best;
+}
+
+std::string with_commas(std::size_t n) {
+  std::string s = std::to_string(n);
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3)
+    s.insert(static_cast<std::size_t>(i), ",");
+  return s;
+}
+
+void add_vertex_samples(const TriMesh& m, SampleSet& set) {
+  // The first face (lowest index) using each vertex, and the corner it sits in.
+  std::vector<std::uint32_t> face_of(m.positions.size(), kNoFace);
+  std::vector<std::uint8_t> corner_of(m.positions.size(), 0);
+  for (std::uint32_t f = 0; f < m.faces.size(); ++f)
+    for (std::uint8_t c = 0; c < 3; ++c) {
+      const std::uint32_t v = m.faces[f][c];
+      if (face_of[v] == kNoFace) {
+        face_of[v] = f;
+        corner_of[v] = c;
+      }
+    }
+  const bool point_cloud = m.faces.empty();
+  for (std::uint32_t v = 0; v < m.positions.size(); ++v) {
+    if (!point_cloud && face_of[v] == kNoFace) continue;  // unreferenced
+    Sample s;
+    s.point = m.positions[v];
+    s.vertex = v;
+    s.face = face_of[v];
+    s.bary = {0, 0, 0};
+    s.bary[corner_of[v]] = 1.0;
+    s.kind = SampleKind::kVertex;
+    set.samples.push_back(s);
+    ++set.vertex_count;
+  }
+}
+
+void add_edge_samples(const TriMesh& m, double step, SampleSet& set) {
+  struct Edge {
+    std::uint32_t lo, hi, face;
+    std::uint8_t c_lo, c_hi;
+  };
+  std::vector<Edge> edges;
+  edges.reserve(3 * m.faces.size());
+  for (std::uint32_t f = 0; f < m.faces.size(); ++f)
+    for (std::uint8_t c = 0; c < 3; ++c) {
+      const std::uint8_t d = static_cast<std::uint8_t>((c + 1) % 3);
+      std::uint32_t u = m.faces[f][c], v = m.faces[f][d];
+      if (u == v) continue;
+      edges.push_back(u < v ? Edge{u, v, f, c, d} : Edge{v, u, f, d, c});
+    }
+  std::sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) {
+    return std::tie(x.lo, x.hi, x.face) < std::tie(y.lo, y.hi, y.face);
+  });
+  edges.erase(
+      std::unique(edges.begin(), edges.end(),
+                  [](const Edge& x, const Edge& y) { return x.lo == y.lo && x.hi == y.hi; }),
+      edges.end());
+  for (const Edge& e : edges) {
+    const Vec3& p = m.positions[e.lo];
+    const Vec3& q = m.positions[e.hi];
+    const double len = norm(q - p);
+    const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(len / step)));
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = (static_cast<double>(k) + 0.5) / static_cast<double>(n);
+      Sample s;
+      s.point = (1.0 - t) * p + t * q;
+      s.face = e.face;
+      s.bary = {0, 0, 0};
+      s.bary[e.c_lo] = 1.0 - t;
+      s.bary[e.c_hi] = t;
+      s.weight = len / static_cast<double>(n);
+      s.kind = SampleKind::kEdge;
+      set.samples.push_back(s);
+      ++set.edge_count;
+    }
+  }
+}
+
+void add_scan_samples(const TriMesh& m, double step, SampleSet& set) {
+  for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
+    const Triangle& tri = m.faces[f];
+    const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
+    const std::size_t first = set.samples.size();
+    for_each_scan_point(a, b, c, step, [&](double s, double t) {
+      Sample smp;
+      smp.point = a + s * (b - a) + t * (c - a);
+      smp.face = f;
+      smp.bary = {1.0 - s - t, s, t};
+      smp.kind = SampleKind::kFace;
+      set.samples.push_back(smp);
+    });
+    const std::size_t n = set.samples.size() - first;
+    const double w = face_area(m, f) / static_cast<double>(n);
+    for (std::size_t i = first; i < set.samples.size(); ++i) set.samples[i].weight = w;
+    set.face_count += n;
+  }
+}
+
+void add_monte_carlo_samples(const TriMesh& m, std::size_t target, std::uint64_t seed,
+                             SampleSet& set) {
+  const double total = surface_area(m);
+  if (!(total > 0.0)) return;
+  const double weight = total / static_cast<double>(target);
+  for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
+    const double expected = static_cast<double>(target) * face_area(m, f) / total;
+    const auto n = static_cast<std::size_t>(std::floor(expected + unit_random(seed, f, ~0ull)));
+    const Triangle& tri = m.faces[f];
+    const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = std::sqrt(unit_random(seed, f, 2 * k));
+      const double r2 = unit_random(seed, f, 2 * k + 1);
+      Sample s;
+      s.bary = {1.0 - r, r * (1.0 - r2), r * r2};
+      s.point = s.bary[0] * a + s.bary[1] * b + s.bary[2] * c;
+      s.face = f;
+      s.weight = weight;
+      s.kind = SampleKind::kFace;
+      set.samples.push_back(s);
+    }
+    set.face_count += n;
+  }
+}
+
+}  // namespace
+
+const char* sample_kind_name(SampleKind k) {
+  switch (k) {
+    case SampleKind::kVertex:
+      return "vertex";
+    case SampleKind::kEdge:
+      return "edge";
+    case SampleKind::kFace:
+      return "face";
+  }
+  return "?";
+}
+
+std::size_t scan_conversion_count(const Vec3& a, const Vec3& b, const Vec3& c, double step) {
+  const double lab = norm(b - a), lac = norm(c - a);
+  const std::size_t nu =
+      lab > 0.0 ? static_cast<std::size_t>(std::floor(lab / step + kGridSlack)) : 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i <= nu; ++i) {
+    const double s = lab > 0.0 ? static_cast<double>(i) * step / lab : 0.0;
+    const double rest = 1.0 - s;
+    if (rest < 0.0) break;
+    count +=
+        (lac > 0.0 ? static_cast<std::size_t>(std::floor(rest * lac / step + kGridSlack)) : 0) + 1;
+  }
+  return count;
+}
+
+SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double diagonal) {
+  const bool wants_faces = o.faces != FaceSampling::kNone;
+  if ((wants_faces || o.edges) && mesh.faces.empty())
+    throw InvalidInput(
+        "cannot sample faces or edges of a mesh without faces (a point cloud); "
+        "sample its vertices only");
+  if (o.step < 0.0 || o.step_fraction < 0.0 || !std::isfinite(o.step) ||
+      !std::isfinite(o.step_fraction))
+    throw InvalidInput("the sampling step must be a positive finite number");
+
+  SampleSet set;
+  const std::size_t target = o.target_count > 0 ? o.target_count : 10 * mesh.faces.size();
+  double step = o.step > 0.0 ? o.step : o.step_fraction * diagonal;
+  const bool needs_step = o.faces == FaceSampling::kScanConversion || o.edges;
+  if (needs_step && !(step > 0.0)) {
+    if (o.step > 0.0 || o.step_fraction > 0.0)
+      throw InvalidInput("the sampling step is 0 (is the mesh's bounding box a single point?)");
+    if (o.faces == FaceSampling::kScanConversion || o.faces == FaceSampling::kMonteCarlo) {
+      step = solve_step(mesh, target);
+    } else {  // edges alone: spread the target count over the total edge length
+      double length = 0.0;
+      for (const Triangle& t : mesh.faces)
+        for (int c = 0; c < 3; ++c)
+          length += norm(mesh.positions[t[(c + 1) % 3]] - mesh.positions[t[c]]);
+      step = length > 0.0 ? 0.5 * length / static_cast<double>(target) : 1.0;
+    }
+  }
+  if (o.faces == FaceSampling::kScanConversion && scan_total(mesh, step) > kMaxSamples)
+    throw InvalidInput("the sampling step " + std::to_string(step) +
+                       " would create more than 2^31 samples; use a larger step");
+  set.step = needs_step ? step : 0.0;
+
+  if (o.vertices) add_vertex_samples(mesh, set);
+  if (o.edges) add_edge_samples(mesh, step, set);
+  if (o.faces == FaceSampling::kScanConversion) add_scan_samples(mesh, step, set);
+  if (o.faces == FaceSampling::kMonteCarlo) add_monte_carlo_samples(mesh, target, o.seed, set);
+
+  // Weights: face samples carry area; with face samples present, vertex and edge samples only
+  // hunt the maximum (weight 0); edge samples carry length when they are the finest kind.
+  for (Sample& s : set.samples) {
+    if (s.kind == SampleKind::kFace) continue;
+    if (set.face_count > 0)
+      s.weight = 0.0;
+    else if (s.kind == SampleKind::kVertex)
+      s.weight = set.edge_count > 0 ? 0.0 : 1.0;
+  }
+
+  std::ostringstream d;
+  const char* sep = "";
+  if (set.vertex_count > 0 || o.vertices) {
+    d << with_commas(set.vertex_count) << " vertices";
+    sep = " + ";
+  }
+  if (o.edges) {
+    d << sep << with_commas(set.edge_count) << " edge points";
+    sep = " + ";
+  }
+  if (o.faces == FaceSampling::kScanConversion)
+    d << sep << with_commas(set.face_count) << " face points (scan conversion, step " << step
+      << ")";
+  if (o.faces == FaceSampling::kMonteCarlo)
+    d << sep << with_commas(set.face_count) << " face points (Monte Carlo, seed " << o.seed << ")";
+  set.description = d.str();
+  return set;
+}
+
+}  // namespace meshdev

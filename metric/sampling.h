@@ -1,0 +1,72 @@
+#pragma once
+// Sample points on a mesh's surface (the measurement points of the paper's Eq. 4).
+//
+// Kinds, combinable:
+//  - vertices: every referenced vertex (every vertex if the mesh has no faces: a point cloud);
+//  - edges:    points at the centres of equal steps along every edge (step Δ);
+//  - faces, scan conversion (paper §4, Eq. 5-6): on face (A,B,C) the points
+//              A + iΔ·AB/|AB| + jΔ·AC/|AC| for integers i, j >= 0 inside the triangle, i.e.
+//              barycentrics s = iΔ/|AB|, t = jΔ/|AC| with s + t <= 1 (i <= n_u = |AB|/Δ,
+//              j <= n_v = |AC|/Δ). Every face gets at least its corner A;
+//  - faces, Monte Carlo: area-uniform random points; face f gets floor(N·area_f/area + u_f)
+//              points, u_f uniform in [0,1); the random numbers of point k on face f are a hash
+//              of (seed, f, k), so the set does not depend on the thread count.
+// Weights (for area-weighted statistics): face samples carry area_f / (samples on f); when a set
+// has face samples, its vertex and edge samples carry weight 0 (they hunt the maximum but do not
+// bias the mean); without face samples, edge samples carry length/(samples on the edge) and vertex
+// samples 1 when alone.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "metric/mesh.h"
+#include "metric/nearest_point.h"
+
+namespace meshdev {
+
+enum class SampleKind : std::uint8_t { kVertex = 0, kEdge = 1, kFace = 2 };
+const char* sample_kind_name(SampleKind k);
+
+enum class FaceSampling : std::uint8_t {
+  kNone,            // no face samples
+  kScanConversion,  // the paper's regular 3D scan conversion with step Δ (deterministic)
+  kMonteCarlo,      // area-uniform random points (seeded)
+};
+
+struct SamplingOptions {
+  bool vertices = true;                                // sample the referenced vertices
+  bool edges = false;                                  // sample along the edges with step Δ
+  FaceSampling faces = FaceSampling::kScanConversion;  // how to sample face interiors
+  double step = 0;               // Δ in absolute units; 0 = from step_fraction or the count
+  double step_fraction = 0;      // Δ as a fraction of `diagonal` (e.g. 0.005 = 0.5 %)
+  std::size_t target_count = 0;  // face samples wanted; 0 = 10 x faces (Metro's default)
+  std::uint64_t seed = 1;        // Monte Carlo only
+};
+
+struct Sample {
+  Vec3 point;
+  std::uint32_t face = kNoFace;         // the face it lies on (kNoFace for a point-cloud vertex)
+  std::uint32_t vertex = kNoFace;       // the vertex, for vertex samples
+  std::array<double, 3> bary{1, 0, 0};  // on `face`'s corners
+  double weight = 1;                    // area weight (see above)
+  SampleKind kind = SampleKind::kVertex;
+};
+
+struct SampleSet {
+  std::vector<Sample> samples;
+  double step = 0;  // the Δ actually used (absolute), 0 if none was needed
+  std::size_t vertex_count = 0, edge_count = 0, face_count = 0;
+  std::string description;  // human-readable summary of what was sampled
+};
+
+// Samples `mesh` as `options` says. `diagonal` scales step_fraction (pass the reference mesh's
+// bbox diagonal so both directions of a comparison use the same absolute Δ). Throws InvalidInput
+// for a non-positive step, or face/edge sampling on a mesh without faces.
+// O(F + V + number of samples) time and memory; the Δ search for a target count is O(F log).
+SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& options, double diagonal);
+
+// Number of scan-conversion points on one triangle with step Δ (Eq. 6). O(|AB|/Δ).
+std::size_t scan_conversion_count(const Vec3& a, const Vec3& b, const Vec3& c, double step);
+
+}  // namespace meshdev

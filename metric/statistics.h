@@ -1,0 +1,33 @@
+#pragma once
+// Summary statistics of per-sample deviations, optionally weighted (area weights of face
+// samples). Deterministic: computed serially in sample order with compensated sums, so the result
+// does not depend on the thread count that produced the values.
+#include <cstddef>
+#include <vector>
+
+namespace meshdev {
+
+struct Histogram {
+  std::vector<double> edges;            // bins+1 edges from 0 (or min if negative) to max
+  std::vector<std::size_t> counts;      // samples per bin (last bin closed on the right)
+  std::vector<double> weight_fraction;  // share of the total weight per bin
+};
+
+struct Statistics {
+  std::size_t count = 0;       // number of samples
+  double weight_sum = 0;       // total weight behind mean/variance/percentiles (area for faces)
+  bool area_weighted = false;  // false: every sample counted equally
+  double min = 0, max = 0;     // over every sample, zero-weight ones included
+  double mean = 0, variance = 0, stddev = 0, rms = 0;  // weighted; population variance
+  double p50 = 0, p90 = 0, p95 = 0, p99 = 0;           // weighted quantiles (lower value)
+  std::size_t argmin = 0, argmax = 0;                  // first sample index reaching min / max
+  Histogram histogram;
+};
+
+// Statistics of `values` with `weights` (empty = all 1). Samples with weight 0 count for min, max
+// and the histogram counts only. If every weight is 0, all samples are weighted equally.
+// Precondition: weights empty or the same size as values, weights >= 0. O(n log n) (quantiles).
+Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
+                              int histogram_bins = 32);
+
+}  // namespace meshdev

@@ -1,0 +1,189 @@
+#include "metric/compare.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "metric/errors.h"
+#include "tests/support/shapes.h"
+
+namespace meshdev {
+namespace {
+
+std::size_t measure_index(const ComparisonResult& r, const std::string& name) {
+  for (std::size_t m = 0; m < r.measures.size(); ++m)
+    if (r.measures[m].name == name) return m;
+  ADD_FAILURE() << "no measure " << name;
+  return 0;
+}
+
+CompareOptions all_sample_kinds() {
+  CompareOptions o;
+  o.sampling.edges = true;
+  o.sampling.target_count = 5000;
+  return o;
+}
+
+TEST(Compare, PlaneAgainstOffsetPlaneIsTheOffsetEverywhere) {
+  TriMesh a = test::grid(8, 1.0, 0.0), b = test::grid(5, 1.0, 0.5);
+  ComparisonResult r = compare_meshes(a, b, all_sample_kinds());
+  for (const DirectionResult* d : {&*r.forward, &*r.backward}) {
+    const Statistics& g = d->stats[0];
+    EXPECT_NEAR(g.min, 0.5, 1e-15);
+    EXPECT_NEAR(g.max, 0.5, 1e-15);
+    EXPECT_NEAR(g.mean, 0.5, 1e-15);
+    EXPECT_NEAR(g.stddev, 0.0, 1e-12);
+  }
+  EXPECT_NEAR(r.symmetric[0].hausdorff, 0.5, 1e-15);
+  // Both planes are flat: normals agree everywhere.
+  EXPECT_NEAR(r.forward->stats[measure_index(r, "normal_angle")].max, 0.0, 1e-6);
+}
+
+// Icosahedron inscribed in the unit sphere: its vertices are on the sphere (distance 0) and its
+// face centres are at the inradius 0.7946544722917661, i.e. 0.2053455277 inside.
+TEST(Compare, InscribedIcosahedronAgainstTheSphereHasTheKnownMinAndMax) {
+  TriMesh ico = test::icosahedron(), sphere = test::icosphere(5);
+  CompareOptions o;
+  o.direction = Direction::kForward;
+  o.sampling.step = 0.01;
+  ComparisonResult r = compare_meshes(ico, sphere, o);
+  EXPECT_EQ(r.forward->stats[0].min, 0.0);  // icosahedron vertices are icosphere vertices
+  // The icosphere lies inside the true sphere by at most its sagitta: the largest gap between
+  // the unit sphere and a face plane. So the maximum is in [exact - sagitta, exact].
+  double sagitta = 0.0;
+  for (const Triangle& t : sphere.faces) {
+    const Vec3 &p = sphere.positions[t[0]], &q = sphere.positions[t[1]],
+               &s = sphere.positions[t[2]];
+    const Vec3 n = cross(q - p, s - p);
+    sagitta = std::max(sagitta, 1.0 - dot(n, p) / norm(n));
+  }
+  const double exact = 1.0 - 0.7946544722917661;
+  EXPECT_LE(r.forward->stats[0].max, exact + 1e-12);
+  EXPECT_GE(r.forward->stats[0].max, exact - sagitta);
+  EXPECT_LT(sagitta, 5e-4);
+  EXPECT_EQ(r.forward->max_location[0].kind, SampleKind::kFace);
+}
+
+TEST(Compare, IdenticalMeshesGiveExactlyZeroForEveryAttribute) {
+  TriMesh m = test::icosphere(2);
+  AttributeChannel& color = m.add_channel("color", AttributeKind::kColor, Storage::kPerVertex, 3);
+  for (std::size_t i = 0; i < color.values.size(); ++i)
+    color.values[i] = static_cast<double>(i % 7) / 7.0;
+  AttributeChannel& uv =
+      m.add_channel("texcoord", AttributeKind::kTexCoord, Storage::kPerCorner, 2);
+  for (std::size_t i = 0; i < uv.values.size(); ++i)
+    uv.values[i] = static_cast<double>(i % 13) / 13.0;  // seams everywhere
+  AttributeChannel& t =
+      m.add_channel("temperature", AttributeKind::kScalar, Storage::kPerVertex, 1);
+  for (std::size_t i = 0; i < t.values.size(); ++i) t.values[i] = 20.0 + static_cast<double>(i);
+  for (FaceSampling faces : {FaceSampling::kScanConversion, FaceSampling::kMonteCarlo}) {
+    CompareOptions o = all_sample_kinds();
+    o.sampling.faces = faces;
+    ComparisonResult r = compare_meshes(m, m, o);
+    ASSERT_EQ(r.measures.size(), 8u);  // geometry, normal x2, color x3, texcoord, temperature
+    for (std::size_t k = 0; k < r.measures.size(); ++k) {
+      EXPECT_EQ(r.forward->stats[k].max, 0.0) << r.measures[k].name;
+      EXPECT_EQ(r.backward->stats[k].max, 0.0) << r.measures[k].name;
+    }
+  }
+}
+
+TEST(Compare, TranslatedCopyHasHausdorffEqualToTheTranslation) {
+  TriMesh a = test::tetrahedron();
+  const Vec3 t{0.03, -0.02, 0.05};
+  TriMesh b = test::translated(a, t);
+  ComparisonResult r = compare_meshes(a, b, all_sample_kinds());
+  EXPECT_NEAR(r.symmetric[0].hausdorff, norm(t), 1e-12);
+  EXPECT_LE(r.forward->stats[0].max, norm(t) + 1e-12);
+}
+
+// A triangle halfway between two parallel triangles: every sample has two equidistant nearest
+// points. The far-coloured face has the lower index, so only the tie rule gives 0.1.
+TEST(Compare, TieRuleTakesTheMinimumAttributeDistance) {
+  TriMesh a, b;
+  a.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  a.faces = {{0, 1, 2}};
+  b.positions = {{-1, -1, 1}, {3, -1, 1}, {-1, 3, 1}, {-1, -1, -1}, {3, -1, -1}, {-1, 3, -1}};
+  b.faces = {{0, 1, 2}, {3, 4, 5}};
+  a.add_channel("color", AttributeKind::kColor, Storage::kPerVertex, 3).values = {1, 0, 0, 1, 0,
+                                                                                  0, 1, 0, 0};
+  b.add_channel("color", AttributeKind::kColor, Storage::kPerFace, 3).values = {0, 0, 1, 0.9, 0, 0};
+  CompareOptions o;
+  o.direction = Direction::kForward;
+  o.sampling.step = 0.1;
+  o.attributes.attributes = {"color"};
+  o.keep_samples = true;
+  ComparisonResult r = compare_meshes(a, b, o);
+  const std::size_t c = measure_index(r, "color");
+  EXPECT_NEAR(r.forward->stats[c].min, 0.1, 1e-12);
+  EXPECT_NEAR(r.forward->stats[c].max, 0.1, 1e-12);
+  EXPECT_EQ(r.forward->samples_with_ties, r.forward->samples);
+  EXPECT_EQ(r.forward->deviations.tie_count[0], 2u);
+}
+
+// A square whose diagonal is a UV seam: the two faces give the shared corners different UVs.
+// Samples on the seam find the matching side among the tied faces, so the deviation is 0; a
+// per-vertex interpolation would see the jump.
+TEST(Compare, WedgeUvSeamIsComparedPerCorner) {
+  TriMesh m = test::square();  // faces {0,1,3}, {0,3,2}; diagonal 0-3 is shared
+  AttributeChannel& uv =
+      m.add_channel("texcoord", AttributeKind::kTexCoord, Storage::kPerCorner, 2);
+  uv.values = {0,   0,   0.5, 0,   0.5, 0.5,   // face 0 in the left half of the texture
+               0.6, 0.1, 1.0, 0.5, 0.6, 0.5};  // face 1 in the right half
+  TriMesh shifted = m;                         // B: the same, but face 1's UVs moved by 0.25 in u
+  for (int k = 6; k < 12; k += 2) shifted.channel("texcoord")->values[k] += 0.25;
+  CompareOptions o = all_sample_kinds();
+  o.direction = Direction::kForward;
+  o.attributes.attributes = {"texcoord"};
+  ComparisonResult same = compare_meshes(m, m, o);
+  EXPECT_EQ(same.forward->stats[1].max, 0.0);
+  ComparisonResult moved = compare_meshes(m, shifted, o);
+  EXPECT_NEAR(moved.forward->stats[1].max, 0.25, 1e-12);
+  EXPECT_EQ(moved.forward->stats[1].min, 0.0);  // face-0 samples and seam samples still match
+}
+
+TEST(Compare, BvhAndBruteForceGiveIdenticalResults) {
+  TriMesh a = test::icosphere(2), b = test::random_soup(300, 5);
+  CompareOptions o = all_sample_kinds();
+  o.keep_samples = true;
+  ComparisonResult fast = compare_meshes(a, b, o);
+  o.index = IndexKind::kBruteForce;
+  ComparisonResult slow = compare_meshes(a, b, o);
+  for (const auto& [x, y] :
+       {std::pair{&*fast.forward, &*slow.forward}, std::pair{&*fast.backward, &*slow.backward}})
+    for (std::size_t m = 0; m < fast.measures.size(); ++m)
+      ASSERT_EQ(x->deviations.values[m], y->deviations.values[m]) << fast.measures[m].name;
+}
+
+TEST(Compare, OneThreadEqualsTwoThreads) {
+  TriMesh a = test::icosphere(3), b = test::translated(test::icosphere(2), {0.01, 0, 0});
+  CompareOptions o = all_sample_kinds();
+  o.sampling.faces = FaceSampling::kMonteCarlo;
+  o.sampling.target_count = 40000;
+  o.keep_samples = true;
+  o.threads = 1;
+  ComparisonResult one = compare_meshes(a, b, o);
+  o.threads = 2;
+  ComparisonResult two = compare_meshes(a, b, o);
+  for (std::size_t m = 0; m < one.measures.size(); ++m) {
+    ASSERT_EQ(one.forward->deviations.values[m], two.forward->deviations.values[m]);
+    ASSERT_EQ(one.backward->deviations.values[m], two.backward->deviations.values[m]);
+    EXPECT_EQ(one.symmetric[m].mean, two.symmetric[m].mean);
+  }
+}
+
+TEST(Compare, PointCloudReferenceWorksForwardOnly) {
+  TriMesh cloud;
+  cloud.positions = {{0.2, 0.2, 1.0}, {0.5, 0.1, -2.0}};
+  TriMesh plane = test::square();
+  CompareOptions o;
+  o.sampling.faces = FaceSampling::kNone;
+  o.direction = Direction::kForward;
+  ComparisonResult r = compare_meshes(cloud, plane, o);
+  EXPECT_EQ(r.forward->stats[0].max, 2.0);
+  o.direction = Direction::kBoth;
+  EXPECT_THROW(compare_meshes(cloud, plane, o), InvalidInput);
+}
+
+}  // namespace
+}  // namespace meshdev

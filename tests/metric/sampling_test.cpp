@@ -1,0 +1,107 @@
+#include "metric/sampling.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "metric/errors.h"
+#include "tests/support/shapes.h"
+
+namespace meshdev {
+namespace {
+
+// Eq. 5-6 on the right triangle with legs 1: points (iΔ, jΔ) with i + j <= 1/Δ.
+TEST(Sampling, ScanConversionCountFollowsEquationSix) {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  EXPECT_EQ(scan_conversion_count(a, b, c, 0.25), 15u);  // 5 + 4 + 3 + 2 + 1
+  EXPECT_EQ(scan_conversion_count(a, b, c, 0.1), 66u);   // 11 + 10 + ... + 1
+  EXPECT_EQ(scan_conversion_count(a, b, c, 5.0), 1u);    // a face smaller than Δ keeps corner A
+}
+
+TEST(Sampling, FaceSamplesLieOnTheirFaceWithValidBarycentrics) {
+  TriMesh m = test::icosphere(1);
+  SamplingOptions o;
+  o.step = 0.05;
+  SampleSet set = sample_surface(m, o, 1.0);
+  ASSERT_GT(set.face_count, 0u);
+  for (const Sample& s : set.samples) {
+    ASSERT_NE(s.face, kNoFace);
+    const Triangle& t = m.faces[s.face];
+    EXPECT_NEAR(s.bary[0] + s.bary[1] + s.bary[2], 1.0, 1e-12);
+    for (double b : s.bary) EXPECT_GE(b, -1e-12);
+    const Vec3 q = s.bary[0] * m.positions[t[0]] + s.bary[1] * m.positions[t[1]] +
+                   s.bary[2] * m.positions[t[2]];
+    EXPECT_NEAR(norm(q - s.point), 0.0, 1e-12);
+  }
+}
+
+TEST(Sampling, FaceWeightsSumToTheAreaAndVertexSamplesOnlyHuntTheMaximum) {
+  TriMesh m = test::icosphere(2);
+  SamplingOptions o;
+  o.step_fraction = 0.02;
+  SampleSet set = sample_surface(m, o, 2.0);
+  double faces = 0.0, others = 0.0;
+  for (const Sample& s : set.samples) (s.kind == SampleKind::kFace ? faces : others) += s.weight;
+  EXPECT_NEAR(faces, surface_area(m), 1e-9);
+  EXPECT_EQ(others, 0.0);
+  EXPECT_EQ(set.vertex_count, m.num_vertices());
+  EXPECT_NEAR(set.step, 0.04, 1e-15);
+}
+
+TEST(Sampling, TargetCountIsMetWithinOnePercent) {
+  TriMesh m = test::icosphere(3);
+  SamplingOptions o;
+  o.vertices = false;
+  o.target_count = 50000;
+  SampleSet set = sample_surface(m, o, 2.0);
+  EXPECT_NEAR(static_cast<double>(set.face_count), 50000.0, 500.0);
+}
+
+TEST(Sampling, MonteCarloDependsOnlyOnTheSeed) {
+  TriMesh m = test::icosphere(2);
+  SamplingOptions o;
+  o.vertices = false;
+  o.faces = FaceSampling::kMonteCarlo;
+  o.target_count = 20000;
+  o.seed = 7;
+  SampleSet x = sample_surface(m, o, 2.0), y = sample_surface(m, o, 2.0);
+  ASSERT_EQ(x.samples.size(), y.samples.size());
+  for (std::size_t i = 0; i < x.samples.size(); ++i)
+    ASSERT_EQ(x.samples[i].point, y.samples[i].point);
+  EXPECT_NEAR(static_cast<double>(x.face_count), 20000.0, 600.0);
+  o.seed = 8;
+  SampleSet z = sample_surface(m, o, 2.0);
+  EXPECT_NE(z.samples[0].point, x.samples[0].point);
+}
+
+TEST(Sampling, EdgeSamplesCoverEveryEdgeOnce) {
+  TriMesh m = test::tetrahedron();
+  SamplingOptions o;
+  o.vertices = false;
+  o.edges = true;
+  o.faces = FaceSampling::kNone;
+  o.step = 100.0;  // one sample per edge, at its middle
+  SampleSet set = sample_surface(m, o, 1.0);
+  EXPECT_EQ(set.edge_count, 6u);
+}
+
+TEST(Sampling, PointCloudsAllowVertexSamplesOnly) {
+  TriMesh cloud;
+  cloud.positions = {{0, 0, 0}, {1, 0, 0}};
+  SamplingOptions o;
+  o.faces = FaceSampling::kNone;
+  EXPECT_EQ(sample_surface(cloud, o, 1.0).samples.size(), 2u);
+  o.faces = FaceSampling::kScanConversion;
+  EXPECT_THROW(sample_surface(cloud, o, 1.0), InvalidInput);
+}
+
+TEST(Sampling, UnreferencedVerticesAreNotSampled) {
+  TriMesh m = test::tetrahedron();
+  m.positions.push_back({9, 9, 9});
+  SamplingOptions o;
+  o.faces = FaceSampling::kNone;
+  EXPECT_EQ(sample_surface(m, o, 1.0).vertex_count, 4u);
+}
+
+}  // namespace
+}  // namespace meshdev
