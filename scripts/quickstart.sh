@@ -1,0 +1,65 @@
+#!/usr/bin/env bash
+# meshdev's one entry point for a fresh Debian 12 machine (README "Quick start").
+#   bash scripts/quickstart.sh demo   install what is missing, build, compare a real scan with a
+#                                     simplified copy; outputs in results/demo/
+#   bash scripts/quickstart.sh test   install what is missing, build, run the whole test suite
+#   bash scripts/quickstart.sh build  install what is missing and build only
+# Idempotent: apt-get runs only when a package is missing; the build is incremental.
+set -euo pipefail
+
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build="${MESHDEV_BUILD_DIR:-$here/build}"
+jobs="${MESHDEV_JOBS:-$(nproc)}"
+
+# Build and test dependencies, all from Debian 12.
+packages=(
+  build-essential cmake pkg-config git
+  libopenmesh-dev libopenmesh-apps libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
+  nlohmann-json3-dev libmeshoptimizer-dev libcgal-dev libeigen3-dev
+  libcgal-demo python3 python3-matplotlib meshlab xvfb xauth
+)
+
+setup() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if ((${#missing[@]})); then
+    echo "== installing: ${missing[*]}"
+    local sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  fi
+}
+
+build() {
+  echo "== building in $build"
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release ${MESHDEV_CMAKE_ARGS:-} >/dev/null
+  cmake --build "$build" -j "$jobs"
+}
+
+demo() {
+  local out="$here/results/demo" meshdev="$build/apps/meshdev"
+  mkdir -p "$out"
+  # A real scan from Debian's CGAL data: the Stanford bunny (bunny00.off, 75,408 faces).
+  tar -xzf /usr/share/doc/libcgal-demo/data.tar.gz -C "$out" --strip-components=2 data/meshes/bunny00.off
+  echo "== simplifying bunny00.off to 10 % of its faces (OpenMesh quadric decimation)"
+  "$meshdev" simplify "$out/bunny00.off" "$out/bunny00_10.ply" --method openmesh-quadric --ratio 0.9
+  echo "== meshdev compare bunny00.off bunny00_10.ply"
+  "$meshdev" compare "$out/bunny00.off" "$out/bunny00_10.ply" \
+    --json "$out/compare.json" --csv "$out/compare.csv" --colored "$out/bunny00_deviation.ply"
+  echo "== outputs in $out: compare.json, compare.csv, bunny00_deviation.ply (open it in MeshLab)"
+}
+
+run_tests() {
+  echo "== running the test suite"
+  cd "$build" && ctest --output-on-failure -j "$jobs"
+}
+
+case "${1:-}" in
+  demo) setup; build; demo ;;
+  test) setup; build; run_tests ;;
+  build) setup; build ;;
+  *) echo "usage: $0 demo|test|build" >&2; exit 2 ;;
+esac
