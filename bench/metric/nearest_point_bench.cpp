@@ -1,0 +1,82 @@
+// Nearest-point index and whole-direction deviation throughput.
+//   cmake -DMESHDEV_BUILD_BENCH=ON ... && build/bench/metric_bench
+// Meshes: icospheres (level L has 20·4^L faces); samples: scan conversion of a translated,
+// coarser or finer icosphere, in generation order (face by face, as compare does).
+#include <benchmark/benchmark.h>
+
+#include "metric/attribute_deviation.h"
+#include "metric/attributes.h"
+#include "metric/nearest_point.h"
+#include "metric/sampling.h"
+#include "metric/triangle_bvh.h"
+#include "tests/support/shapes.h"
+
+namespace meshdev {
+namespace {
+
+const TriMesh& sphere(int level) {
+  static TriMesh cache[9];
+  if (cache[level].faces.empty()) cache[level] = test::icosphere(level);
+  return cache[level];
+}
+
+SampleSet samples_on(int level, std::size_t count) {
+  SamplingOptions o;
+  o.vertices = false;
+  o.target_count = count;
+  return sample_surface(test::translated(sphere(level), {0.003, 0.002, 0.001}), o, 2.0);
+}
+
+// BVH build time by target size (level 5: 20k faces, 6: 82k, 7: 328k, 8: 1.3M).
+void BM_BvhBuild(benchmark::State& state) {
+  const TriMesh& target = sphere(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    TriangleBvh bvh(target);
+    benchmark::DoNotOptimize(bvh.node_count());
+  }
+  state.counters["faces"] = static_cast<double>(target.num_faces());
+  state.counters["bytes_per_face"] =
+      static_cast<double>(TriangleBvh(target).memory_bytes()) / static_cast<double>(target.num_faces());
+}
+BENCHMARK(BM_BvhBuild)->Arg(5)->Arg(6)->Arg(7)->Unit(benchmark::kMillisecond);
+
+// Single queries in sample order with the previous-hit hint, one thread.
+void BM_NearestQuery(benchmark::State& state) {
+  const TriMesh& target = sphere(static_cast<int>(state.range(0)));
+  TriangleBvh bvh(target);
+  const SampleSet s = samples_on(static_cast<int>(state.range(1)), 200000);
+  std::vector<SurfaceHit> ties;
+  std::size_t i = 0;
+  std::uint32_t previous = kNoFace;
+  for (auto _ : state) {
+    QueryHint hint;
+    hint.start_face = previous;
+    benchmark::DoNotOptimize(bvh.find(s.samples[i].point, hint, ties));
+    previous = ties.front().face;
+    i = (i + 1) % s.samples.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+BENCHMARK(BM_NearestQuery)->Args({5, 7})->Args({7, 5})->Args({7, 7});
+
+// The whole per-sample loop (closest point, ties, geometry + normal measures) on 1M samples,
+// by thread count.
+void BM_Deviations(benchmark::State& state) {
+  const TriMesh& a = sphere(7);
+  const TriMesh& b = sphere(5);
+  const SampleSet s = samples_on(7, 1000000);
+  AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
+  TriangleBvh bvh(b);
+  for (auto _ : state) {
+    SampleDeviations d = compute_deviations(s, plan.a, plan.b, bvh, plan.measures,
+                                            DeviationOptions{static_cast<int>(state.range(0))});
+    benchmark::DoNotOptimize(d.values[0].data());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * s.samples.size()));
+}
+BENCHMARK(BM_Deviations)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace meshdev
+
+BENCHMARK_MAIN();
