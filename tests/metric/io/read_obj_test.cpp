@@ -1,0 +1,189 @@
+#include "metric/io/read_obj.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "metric/io/mesh_io.h"
+#include "tests/metric/io/io_test_util.h"
+#include "tests/support/test_data.h"
+
+namespace meshdev::test {
+namespace {
+
+const char* kTri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+TEST(ReadObj, TriangleWithProvenance) {
+  std::string path = write_file(scratch_dir("obj_tri"), "t.obj", std::string(kTri) + "f 1 2 3\n");
+  TriMesh m = read_mesh(path);
+  ASSERT_EQ(m.num_vertices(), 3u);
+  ASSERT_EQ(m.num_faces(), 1u);
+  EXPECT_EQ(m.faces[0], (Triangle{0, 1, 2}));
+  EXPECT_EQ(m.positions[1].x, 1.0);
+  EXPECT_EQ(m.source_file, path);
+  EXPECT_EQ(m.source_polygons, 1u);
+  EXPECT_TRUE(m.channels.empty());
+}
+
+TEST(ReadObj, QuadIsFannedFromFirstCornerAndCornersKeepTheirUVs) {
+  // Vertex 1 gets vt 1 in the quad and vt 5 in the triangle: UVs must be per corner.
+  std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+      "f 1/1 2/2 3/3 4/4\nf 1/5 3/3 4/4\n";
+  TriMesh m = read_mesh(write_file(scratch_dir("obj_quad"), "q.obj", obj));
+  ASSERT_EQ(m.num_faces(), 3u);
+  EXPECT_EQ(m.source_polygons, 2u);
+  EXPECT_EQ(m.faces[0], (Triangle{0, 1, 2}));
+  EXPECT_EQ(m.faces[1], (Triangle{0, 2, 3}));
+  const AttributeChannel* uv = m.channel("texcoord");
+  ASSERT_NE(uv, nullptr);
+  EXPECT_EQ(uv->storage, Storage::kPerCorner);
+  EXPECT_EQ(uv->kind, AttributeKind::kTexCoord);
+  // Face 1 = corners (1, 3, 4) of the quad: UVs (0,0), (1,1), (0,1).
+  EXPECT_EQ(uv->element(3 * 1 + 1)[0], 1.0);
+  EXPECT_EQ(uv->element(3 * 1 + 2)[1], 1.0);
+  EXPECT_EQ(uv->element(3 * 2 + 0)[0], 0.5);
+}
+
+TEST(ReadObj, ConsistentUVsAndNormalsArePerVertex) {
+  std::string obj = std::string(kTri) +
+                    "vt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 2\n"
+                    "f 1/1/1 2/2/2 3/3/3\n";
+  TriMesh m = read_mesh(write_file(scratch_dir("obj_pv"), "pv.obj", obj));
+  ASSERT_NE(m.channel("texcoord"), nullptr);
+  EXPECT_EQ(m.channel("texcoord")->storage, Storage::kPerVertex);
+  ASSERT_NE(m.channel("normal"), nullptr);
+  EXPECT_EQ(m.channel("normal")->storage, Storage::kPerVertex);
+  EXPECT_EQ(m.channel("normal")->element(2)[2], 2.0);
+}
+
+TEST(ReadObj, UnreferencedVertexForcesPerCornerUVs) {
+  std::string obj = std::string(kTri) + "v 9 9 9\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n";
+  TriMesh m = read_mesh(write_file(scratch_dir("obj_unref"), "u.obj", obj));
+  EXPECT_EQ(m.num_vertices(), 4u);
+  EXPECT_EQ(m.channel("texcoord")->storage, Storage::kPerCorner);
+}
+
+TEST(ReadObj, NegativeAndForwardIndices) {
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nf 1 3 4\nv 1 1 0\n";
+  TriMesh m = read_mesh(write_file(scratch_dir("obj_neg"), "n.obj", obj));
+  ASSERT_EQ(m.num_faces(), 2u);
+  EXPECT_EQ(m.faces[0], (Triangle{0, 1, 2}));
+  EXPECT_EQ(m.faces[1], (Triangle{0, 2, 3}));
+}
+
+TEST(ReadObj, VertexColours) {
+  std::string obj = "v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n";
+  TriMesh m = read_mesh(write_file(scratch_dir("obj_col"), "c.obj", obj));
+  const AttributeChannel* c = m.channel("color");
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->kind, AttributeKind::kColor);
+  EXPECT_EQ(c->element(1)[1], 1.0);
+}
+
+TEST(ReadObj, CrlfBomCommentsAndIgnoredRecords) {
+  std::string obj =
+      "\xEF\xBB\xBF# c\r\no thing\r\ng grp\r\ns 1\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\n"
+      "l 1 2\r\nf 1 2 3 # trailing\r\n";
+  TriMesh m = read_mesh(write_file(scratch_dir("obj_crlf"), "c.obj", obj));
+  EXPECT_EQ(m.num_faces(), 1u);
+}
+
+TEST(ReadObj, RepeatedCornerAndUnreferencedVertexAreKept) {
+  std::string obj = std::string(kTri) + "v 5 5 5\nf 1 2 2\n";
+  TriMesh m = read_mesh(write_file(scratch_dir("obj_degen"), "d.obj", obj));
+  EXPECT_EQ(m.num_vertices(), 4u);
+  EXPECT_EQ(m.faces[0], (Triangle{0, 1, 1}));
+}
+
+TEST(ReadObj, MaterialWithWindowsPathAndMissingLibrary) {
+  std::string dir = scratch_dir("obj_mtl");
+  write_file(dir, "m.mtl", "newmtl a\nmap_Kd .\\a.png\nnewmtl b\nmap_Kd -s 1 1 1 .\\tex\\b.jpg\n");
+  TriMesh m = read_mesh(
+      write_file(dir, "m.obj", "mtllib m.mtl\n" + std::string(kTri) + "usemtl b\nf 1 2 3\n"));
+  EXPECT_EQ(m.texture_file, dir + "/tex/b.jpg");
+  // A missing .mtl is a warning, not an error.
+  TriMesh n =
+      read_mesh(write_file(dir, "n.obj", "mtllib nowhere.mtl\n" + std::string(kTri) + "f 1 2 3\n"));
+  EXPECT_EQ(n.num_faces(), 1u);
+  EXPECT_TRUE(n.texture_file.empty());
+}
+
+TEST(ReadObj, MalformedInputsNameFileLineAndProblem) {
+  std::string dir = scratch_dir("obj_bad");
+  expect_parse_error(write_file(dir, "empty.obj", ""), "empty file");
+  expect_parse_error(write_file(dir, "zero.obj", std::string(kTri) + "f 0 1 2\n"),
+                     "line 4: vertex index 0");
+  expect_parse_error(write_file(dir, "range.obj", std::string(kTri) + "f 1 2 4\n"), "out of range");
+  expect_parse_error(write_file(dir, "neg.obj", std::string(kTri) + "f 1 2 -4\n"),
+                     "before the first");
+  expect_parse_error(write_file(dir, "two.obj", std::string(kTri) + "f 1 2\n"), "2 corners");
+  expect_parse_error(write_file(dir, "nan.obj", "v 0 nan 0\n"), "line 1: 'nan' is not a finite");
+  expect_parse_error(write_file(dir, "z.obj", "v 0 0\n"), "needs 3 coordinates");
+  expect_parse_error(write_file(dir, "text.obj", "v 0 0 x\n"), "'x' is not a number");
+  expect_parse_error(write_file(dir, "partial.obj", std::string(kTri) + "vt 0 0\nf 1/1 2/1 3\n"),
+                     "differ in which of vt/vn");
+  expect_parse_error(
+      write_file(dir, "mixed.obj", std::string(kTri) + "vt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n"),
+      "texture coordinates missing");
+  expect_parse_error(write_file(dir, "kw.obj", "vertex 1 2 3\n"), "unknown OBJ keyword");
+  expect_parse_error(write_file(dir, "nov.obj", "# only a comment\n"), "no vertices");
+}
+
+TEST(ReadObj, VeryLongLine) {
+  std::string obj = std::string(kTri) + "f 1 2 3" + std::string(500000, ' ') + "\n";
+  EXPECT_EQ(read_mesh(write_file(scratch_dir("obj_long"), "l.obj", obj)).num_faces(), 1u);
+}
+
+TEST(ReadObjReal, TexturedBunny) {
+  std::string data = shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
+  TriMesh m = read_mesh(data + "/textured/bunny10k_textured/bunny10k_textured.obj");
+  EXPECT_EQ(m.num_vertices(), 5051u);
+  EXPECT_EQ(m.num_faces(), 9999u);
+  ASSERT_NE(m.channel("texcoord"), nullptr);
+  EXPECT_EQ(m.channel("texcoord")->storage, Storage::kPerCorner);
+  EXPECT_EQ(std::filesystem::path(m.texture_file).filename(), "TextureDouble_A.png");
+  EXPECT_TRUE(std::filesystem::exists(m.texture_file));
+}
+
+TEST(ReadObjReal, SpiderWithWindowsMaterialPaths) {
+  std::string data = shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
+  TriMesh m = read_mesh(data + "/textured/spider/spider.obj");
+  EXPECT_EQ(m.num_vertices(), 762u);
+  EXPECT_EQ(m.num_faces(), 1368u);
+  EXPECT_NE(m.channel("texcoord"), nullptr);
+  EXPECT_NE(m.channel("normal"), nullptr);
+  EXPECT_EQ(std::filesystem::path(m.texture_file).filename(), "SpiderTex.jpg");
+  EXPECT_TRUE(std::filesystem::exists(m.texture_file));
+}
+
+TEST(ReadObjReal, VestaNormalsPerVertex) {
+  std::string data = shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
+  TriMesh m = read_mesh(data + "/textured/vesta/4vesta_21_MLfix.obj");
+  EXPECT_EQ(m.num_vertices(), 2522u);
+  EXPECT_EQ(m.num_faces(), 5040u);
+  EXPECT_EQ(m.channel("normal")->storage, Storage::kPerVertex);
+  EXPECT_NO_THROW(validate(m, "vesta"));
+}
+
+TEST(ReadObjReal, BuildingsLoadsFast) {
+  std::string data = shared_data_dir();
+  if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
+  auto t0 = std::chrono::steady_clock::now();
+  TriMesh m = read_mesh(data + "/large/buildings.obj");
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(m.num_vertices(), 200062u);
+  EXPECT_EQ(m.num_faces(), 400020u);
+  std::cout << "[          ] buildings.obj read in " << seconds << " s\n";
+#ifdef NDEBUG
+  EXPECT_LT(seconds, 1.0);
+#endif
+}
+
+}  // namespace
+}  // namespace meshdev::test
