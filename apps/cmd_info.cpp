@@ -12,9 +12,12 @@ namespace {
 
 const char* storage_name(Storage s) {
   switch (s) {
-    case Storage::kPerVertex: return "per vertex";
-    case Storage::kPerCorner: return "per corner";
-    case Storage::kPerFace: return "per face";
+    case Storage::kPerVertex:
+      return "per vertex";
+    case Storage::kPerCorner:
+      return "per corner";
+    case Storage::kPerFace:
+      return "per face";
   }
   return "?";
 }

@@ -1,0 +1,351 @@
+#include "metric/io/read_obj.h"
+
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <vector>
+
+#include "metric/errors.h"
+#include "metric/io/text_scan.h"
+
+namespace meshdev {
+namespace {
+
+using io_detail::LineReader;
+using io_detail::NumberStatus;
+using io_detail::quoted;
+using io_detail::Tokens;
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+// Keywords of the OBJ specification that carry nothing a triangle mesh needs.
+bool is_ignored_keyword(std::string_view k) {
+  static constexpr std::string_view kIgnored[] = {
+      "g",         "o",      "s",     "l",     "p",        "vp",       "mg",
+      "usemap",    "maplib", "lod",   "bevel", "c_interp", "d_interp", "shadow_obj",
+      "trace_obj", "cstype", "deg",   "bmat",  "step",     "curv",     "curv2",
+      "surf",      "parm",   "trim",  "hole",  "scrv",     "sp",       "end",
+      "con",       "ctech",  "stech", "call",  "csh"};
+  for (std::string_view i : kIgnored)
+    if (k == i) return true;
+  return false;
+}
+
+// The polygons as read, before triangulation; indices already 0-based.
+struct ObjPolygons {
+  std::vector<std::uint32_t> v, vt, vn;  // one entry per corner; vt/vn are kNone if absent
+  std::vector<std::size_t> first;        // first corner of polygon i; first.back() = corners
+  std::vector<std::size_t> line;         // line of polygon i
+};
+
+class ObjParser {
+ public:
+  ObjParser(const std::string& path, std::string_view content) : path_(path), content_(content) {}
+
+  TriMesh parse();
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw ParseError(path_, "line " + std::to_string(lines_.line_number()), what);
+  }
+  double number(std::string_view token) const {
+    double value = 0;
+    NumberStatus s = io_detail::parse_double(token, value);
+    if (s != NumberStatus::kOk) fail(io_detail::describe_bad_number(token, s));
+    return value;
+  }
+  void parse_vertex(Tokens& t);
+  void parse_values(Tokens& t, std::vector<double>& out, int min_count, int max_count, int keep,
+                    const char* what);
+  void parse_face(Tokens& t);
+  std::uint32_t resolve(std::string_view token, std::size_t count, const char* what) const;
+  void check_deferred(const std::vector<std::uint32_t>& ids, std::size_t count,
+                      const char* what) const;
+  void build_channel(TriMesh& mesh, const std::vector<std::uint32_t>& ids,
+                     const std::vector<double>& values, int dim, const char* name,
+                     AttributeKind kind) const;
+  void resolve_texture(TriMesh& mesh) const;
+
+  const std::string& path_;
+  std::string_view content_;
+  LineReader lines_{""};
+  std::vector<Vec3> positions_;
+  std::vector<double> colors_;  // 3 per vertex when present
+  std::vector<double> alpha_;
+  int color_values_ = -1;  // values after x y z on the first v line: 0 (none), 1 (w), 3, 4
+  std::vector<double> uvs_, normals_;
+  ObjPolygons polys_;
+  int face_has_vt_ = -1, face_has_vn_ = -1;  // -1 until the first face
+  std::size_t first_face_line_ = 0;
+  std::string mtllib_, material_;
+};
+
+TriMesh ObjParser::parse() {
+  lines_ = LineReader(io_detail::strip_bom(content_));
+  polys_.first.push_back(0);
+  std::string_view line;
+  while (lines_.next(line)) {
+    Tokens t(line);
+    std::string_view key;
+    if (!t.next(key) || key.front() == '#') continue;
+    if (key == "v") {
+      parse_vertex(t);
+    } else if (key == "vt") {
+      parse_values(t, uvs_, 1, 3, 2, "texture coordinate (vt)");
+    } else if (key == "vn") {
+      parse_values(t, normals_, 3, 3, 3, "normal (vn)");
+    } else if (key == "f") {
+      parse_face(t);
+    } else if (key == "mtllib") {
+      if (mtllib_.empty()) mtllib_ = std::string(t.rest());
+    } else if (key == "usemtl") {
+      if (material_.empty()) material_ = std::string(t.rest());
+    } else if (!is_ignored_keyword(key)) {
+      fail("unknown OBJ keyword " + quoted(key));
+    }
+  }
+  if (positions_.empty()) throw ParseError(path_, "", "no vertices (no 'v' line)");
+
+  // Positive indices may refer to vertices defined later in the file: check them now.
+  check_deferred(polys_.v, positions_.size(), "vertex");
+  check_deferred(polys_.vt, uvs_.size() / 2, "texture coordinate");
+  check_deferred(polys_.vn, normals_.size() / 3, "normal");
+
+  TriMesh mesh;
+  mesh.source_file = path_;
+  mesh.positions = std::move(positions_);
+  const std::size_t polygons = polys_.first.size() - 1;
+  mesh.source_polygons = polygons;
+  mesh.faces.reserve(polys_.v.size() - 2 * polygons);
+  for (std::size_t p = 0; p < polygons; ++p)
+    for (std::size_t c = polys_.first[p] + 1; c + 1 < polys_.first[p + 1]; ++c)
+      mesh.faces.push_back({polys_.v[polys_.first[p]], polys_.v[c], polys_.v[c + 1]});
+
+  if (color_values_ >= 3) {
+    AttributeChannel& ch = mesh.add_channel("color", AttributeKind::kColor, Storage::kPerVertex, 3);
+    ch.values = std::move(colors_);
+  }
+  if (color_values_ == 4) {
+    AttributeChannel& ch =
+        mesh.add_channel("alpha", AttributeKind::kScalar, Storage::kPerVertex, 1);
+    ch.values = std::move(alpha_);
+  }
+  if (face_has_vt_ == 1)
+    build_channel(mesh, polys_.vt, uvs_, 2, "texcoord", AttributeKind::kTexCoord);
+  if (face_has_vn_ == 1)
+    build_channel(mesh, polys_.vn, normals_, 3, "normal", AttributeKind::kNormal);
+  resolve_texture(mesh);
+  return mesh;
+}
+
+void ObjParser::parse_vertex(Tokens& t) {
+  std::string_view tok[8];
+  int n = 0;
+  while (n < 8 && t.next(tok[n])) ++n;
+  if (n == 8) fail("too many values on a 'v' line (expected x y z [w] or x y z r g b [a])");
+  if (n < 3) fail("vertex needs 3 coordinates, found " + std::to_string(n));
+  if (n == 5) fail("'v' line with 5 values (expected x y z [w] or x y z r g b [a])");
+  positions_.push_back({number(tok[0]), number(tok[1]), number(tok[2])});
+  const int extra = n == 4 ? 1 : n - 3;
+  if (color_values_ < 0) color_values_ = extra;
+  if (extra != color_values_ && !(extra <= 1 && color_values_ <= 1))
+    fail("vertex " + std::to_string(positions_.size()) + " has " + std::to_string(extra) +
+         " values after x y z but the first vertex has " + std::to_string(color_values_) +
+         " (colours must be given for every vertex or none)");
+  if (extra == 1) number(tok[3]);  // w: checked, not stored
+  if (extra >= 3)
+    for (int k = 3; k < 6; ++k) colors_.push_back(number(tok[k]));
+  if (extra == 4) alpha_.push_back(number(tok[6]));
+}
+
+void ObjParser::parse_values(Tokens& t, std::vector<double>& out, int min_count, int max_count,
+                             int keep, const char* what) {
+  std::string_view tok;
+  int n = 0;
+  double v[3] = {0, 0, 0};
+  while (t.next(tok)) {
+    if (n == max_count) fail(std::string("too many values for a ") + what);
+    v[n++] = number(tok);
+  }
+  if (n < min_count || n < keep)
+    fail(std::string(what) + " needs " + std::to_string(keep) + " values, found " +
+         std::to_string(n));
+  out.insert(out.end(), v, v + keep);
+}
+
+std::uint32_t ObjParser::resolve(std::string_view token, std::size_t count,
+                                 const char* what) const {
+  std::int64_t i = 0;
+  NumberStatus s = io_detail::parse_int(token, i);
+  if (s == NumberStatus::kNotNumber)
+    fail(std::string(what) + " index " + quoted(token) + " is not an integer");
+  if (s != NumberStatus::kOk)
+    fail(std::string(what) + " index " + quoted(token) + " is out of range");
+  if (i == 0) fail(std::string(what) + " index 0 (OBJ indices start at 1)");
+  if (i < 0) {
+    // Relative: -1 is the last one defined so far.
+    if (static_cast<std::uint64_t>(-i) > count)
+      fail(std::string(what) + " index " + std::to_string(i) + " refers before the first (" +
+           std::to_string(count) + " defined so far)");
+    return static_cast<std::uint32_t>(static_cast<std::int64_t>(count) + i);
+  }
+  if (i > static_cast<std::int64_t>(kNone) - 1)
+    fail(std::string(what) + " index " + std::to_string(i) + " is out of range");
+  return static_cast<std::uint32_t>(i - 1);
+}
+
+void ObjParser::parse_face(Tokens& t) {
+  std::string_view tok;
+  std::size_t corners = 0;
+  int has_vt = -1, has_vn = -1;
+  while (t.next(tok)) {
+    if (tok.front() == '#') break;
+    std::size_t s1 = tok.find('/');
+    std::string_view a = tok.substr(0, s1), b, c;
+    bool slash_vt = false, slash_vn = false;
+    if (s1 != std::string_view::npos) {
+      std::size_t s2 = tok.find('/', s1 + 1);
+      b = tok.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
+      slash_vt = !b.empty();
+      if (s2 != std::string_view::npos) {
+        c = tok.substr(s2 + 1);
+        if (c.find('/') != std::string_view::npos) fail("bad face corner " + quoted(tok));
+        if (c.empty()) fail("bad face corner " + quoted(tok) + " (empty normal index)");
+        slash_vn = true;
+      }
+    }
+    if (a.empty()) fail("bad face corner " + quoted(tok) + " (no vertex index)");
+    int vt_here = slash_vt ? 1 : 0, vn_here = slash_vn ? 1 : 0;
+    if (has_vt < 0) has_vt = vt_here, has_vn = vn_here;
+    if (vt_here != has_vt || vn_here != has_vn)
+      fail("face corners " + std::to_string(corners + 1) +
+           " and 1 differ in which of vt/vn they reference (" + quoted(tok) + ")");
+    polys_.v.push_back(resolve(a, positions_.size(), "vertex"));
+    polys_.vt.push_back(slash_vt ? resolve(b, uvs_.size() / 2, "texture coordinate") : kNone);
+    polys_.vn.push_back(slash_vn ? resolve(c, normals_.size() / 3, "normal") : kNone);
+    ++corners;
+  }
+  if (corners < 3) {
+    polys_.v.resize(polys_.first.back());
+    fail("face with " + std::to_string(corners) + " corners (at least 3 needed)");
+  }
+  if (face_has_vt_ < 0) {
+    face_has_vt_ = has_vt, face_has_vn_ = has_vn;
+    first_face_line_ = lines_.line_number();
+  }
+  if (has_vt != face_has_vt_ || has_vn != face_has_vn_)
+    fail(std::string("face ") + (has_vt != face_has_vt_ ? "texture coordinates" : "normals") +
+         (has_vt != face_has_vt_ ? (has_vt ? " present" : " missing")
+                                 : (has_vn ? " present" : " missing")) +
+         " but not so on the first face (line " + std::to_string(first_face_line_) +
+         "); every face must reference the same attributes");
+  polys_.first.push_back(polys_.v.size());
+  polys_.line.push_back(lines_.line_number());
+}
+
+void ObjParser::check_deferred(const std::vector<std::uint32_t>& ids, std::size_t count,
+                               const char* what) const {
+  for (std::size_t p = 0; p + 1 < polys_.first.size(); ++p)
+    for (std::size_t c = polys_.first[p]; c < polys_.first[p + 1]; ++c)
+      if (ids[c] != kNone && ids[c] >= count)
+        throw ParseError(path_, "line " + std::to_string(polys_.line[p]),
+                         std::string(what) + " index " + std::to_string(ids[c] + 1ull) +
+                             " out of range (" + std::to_string(count) + " defined)");
+}
+
+// Per vertex when every vertex is used and every corner of vertex v names the same vt/vn;
+// otherwise per corner, following the fan triangulation.
+void ObjParser::build_channel(TriMesh& mesh, const std::vector<std::uint32_t>& ids,
+                              const std::vector<double>& values, int dim, const char* name,
+                              AttributeKind kind) const {
+  const std::size_t d = static_cast<std::size_t>(dim);
+  std::vector<std::uint32_t> of_vertex(mesh.positions.size(), kNone);
+  bool per_vertex = true;
+  for (std::size_t c = 0; c < ids.size() && per_vertex; ++c) {
+    std::uint32_t& slot = of_vertex[polys_.v[c]];
+    if (slot == kNone) slot = ids[c];
+    per_vertex = slot == ids[c];
+  }
+  for (std::size_t v = 0; v < of_vertex.size() && per_vertex; ++v)
+    per_vertex = of_vertex[v] != kNone;
+  if (per_vertex) {
+    AttributeChannel& ch = mesh.add_channel(name, kind, Storage::kPerVertex, dim);
+    for (std::size_t v = 0; v < of_vertex.size(); ++v)
+      for (std::size_t k = 0; k < d; ++k) ch.values[v * d + k] = values[of_vertex[v] * d + k];
+    return;
+  }
+  AttributeChannel& ch = mesh.add_channel(name, kind, Storage::kPerCorner, dim);
+  std::size_t f = 0;
+  for (std::size_t p = 0; p + 1 < polys_.first.size(); ++p) {
+    const std::size_t c0 = polys_.first[p];
+    for (std::size_t c = c0 + 1; c + 1 < polys_.first[p + 1]; ++c, ++f) {
+      const std::size_t corner[3] = {c0, c, c + 1};
+      for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t k = 0; k < d; ++k)
+          ch.values[(3 * f + i) * d + k] = values[ids[corner[i]] * d + k];
+    }
+  }
+}
+
+// Skips map_Kd options (-s u v w, -blendu on, ...) and returns the file name.
+std::string_view map_file_name(std::string_view rest) {
+  Tokens t(rest);
+  std::string_view tok;
+  while (true) {
+    Tokens probe = t;
+    if (!probe.next(tok) || tok.front() != '-') break;
+    t.next(tok);
+    int args = 1;
+    if (tok == "-s" || tok == "-o" || tok == "-t")
+      args = 3;
+    else if (tok == "-mm")
+      args = 2;
+    for (int i = 0; i < args; ++i) t.next(tok);
+  }
+  return t.rest();
+}
+
+void ObjParser::resolve_texture(TriMesh& mesh) const {
+  if (mtllib_.empty()) return;
+  const std::string folder = io_detail::folder_of(path_);
+  std::string mtl_path = io_detail::resolve_relative(folder, mtllib_);
+  std::string mtl;
+  try {
+    mtl = io_detail::read_file_bytes(mtl_path);
+  } catch (const IoError& e) {
+    std::cerr << "meshdev: warning: " << path_ << ": mtllib " << quoted(mtllib_)
+              << " not readable (" << e.what() << "); no texture\n";
+    return;
+  }
+  LineReader lines(io_detail::strip_bom(mtl));
+  std::string_view line, current, first_map;
+  bool wanted = false;
+  while (lines.next(line)) {
+    Tokens t(line);
+    std::string_view key;
+    if (!t.next(key)) continue;
+    if (key == "newmtl") {
+      current = t.rest();
+      wanted = !material_.empty() && current == material_;
+    } else if (key == "map_Kd") {
+      std::string_view file = map_file_name(t.rest());
+      if (file.empty()) continue;
+      if (wanted) {
+        mesh.texture_file = io_detail::resolve_relative(folder, file);
+        return;
+      }
+      if (first_map.empty()) first_map = file;
+    }
+  }
+  // No usemtl (or its material has no map_Kd): fall back to the first map_Kd of the library.
+  if (!first_map.empty() && material_.empty())
+    mesh.texture_file = io_detail::resolve_relative(folder, first_map);
+}
+
+}  // namespace
+
+TriMesh read_obj(const std::string& path, std::string_view content) {
+  return ObjParser(path, content).parse();
+}
+
+}  // namespace meshdev

@@ -1,0 +1,154 @@
+#include "metric/io/text_scan.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "metric/errors.h"
+
+namespace meshdev::io_detail {
+
+std::string read_file_bytes(const std::string& path) {
+  auto fail = [&path](const char* what, int err) {
+    throw IoError(path + ": " + what + ": " + std::strerror(err));
+  };
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail("cannot open", errno);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    int err = errno;
+    ::close(fd);
+    fail("cannot stat", err);
+  }
+  if (S_ISDIR(st.st_mode)) {
+    ::close(fd);
+    fail("cannot open", EISDIR);
+  }
+  std::string data;
+  if (S_ISREG(st.st_mode)) data.reserve(static_cast<std::size_t>(st.st_size));
+  char buffer[1 << 16];
+  for (;;) {
+    ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      int err = errno;
+      ::close(fd);
+      fail("cannot read", err);
+    }
+    if (n == 0) break;
+    data.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fd);
+  return data;
+}
+
+std::string_view strip_bom(std::string_view text) {
+  if (text.size() >= 3 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  return text;
+}
+
+std::string folder_of(const std::string& path) {
+  return std::filesystem::path(path).parent_path().string();
+}
+
+std::string resolve_relative(const std::string& folder, std::string_view name) {
+  std::string n(trim(name));
+  for (char& c : n)
+    if (c == '\\') c = '/';
+  while (n.size() > 2 && n[0] == '.' && n[1] == '/') n.erase(0, 2);
+  std::filesystem::path p(n);
+  if (p.is_absolute() || folder.empty()) return p.lexically_normal().string();
+  return (std::filesystem::path(folder) / p).lexically_normal().string();
+}
+
+bool LineReader::next(std::string_view& line) {
+  if (pos_ >= text_.size()) return false;
+  std::size_t end = text_.find('\n', pos_);
+  if (end == std::string_view::npos) end = text_.size();
+  line = text_.substr(pos_, end - pos_);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  pos_ = end + 1;
+  ++line_;
+  return true;
+}
+
+std::string_view Tokens::rest() const {
+  return trim(s_.substr(pos_ < s_.size() ? pos_ : s_.size()));
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && is_space(s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space(s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::string_view strip_comment(std::string_view line) {
+  std::size_t hash = line.find('#');
+  return hash == std::string_view::npos ? line : line.substr(0, hash);
+}
+
+NumberStatus parse_double(std::string_view token, double& out) {
+  std::string_view t = token;
+  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  if (t.empty() || t.front() == '+') return NumberStatus::kNotNumber;
+  const char* end = t.data() + t.size();
+  auto [ptr, ec] = std::from_chars(t.data(), end, out, std::chars_format::general);
+  if (ptr != end) return NumberStatus::kNotNumber;
+  if (ec == std::errc::result_out_of_range) {
+    // Overflow is an error; underflow to a subnormal or zero is a legitimate value.
+    std::string copy(t);
+    errno = 0;
+    double v = std::strtod(copy.c_str(), nullptr);
+    if (!std::isfinite(v) || std::fabs(v) > 1.0) return NumberStatus::kNotFinite;
+    out = v;
+    return NumberStatus::kOk;
+  }
+  if (ec != std::errc()) return NumberStatus::kNotNumber;
+  return std::isfinite(out) ? NumberStatus::kOk : NumberStatus::kNotFinite;
+}
+
+NumberStatus parse_int(std::string_view token, std::int64_t& out) {
+  std::string_view t = token;
+  if (!t.empty() && t.front() == '+') t.remove_prefix(1);
+  if (t.empty() || t.front() == '+') return NumberStatus::kNotNumber;
+  const char* end = t.data() + t.size();
+  auto [ptr, ec] = std::from_chars(t.data(), end, out);
+  if (ptr != end) return NumberStatus::kNotNumber;
+  if (ec == std::errc::result_out_of_range) return NumberStatus::kNotFinite;
+  if (ec != std::errc()) return NumberStatus::kNotNumber;
+  return NumberStatus::kOk;
+}
+
+std::string describe_bad_number(std::string_view token, NumberStatus status) {
+  if (status == NumberStatus::kNotFinite) return quoted(token) + " is not a finite number in range";
+  return quoted(token) + " is not a number";
+}
+
+std::string quoted(std::string_view token) {
+  std::string out = "'";
+  std::size_t n = 0;
+  for (char ch : token) {
+    if (++n > 40) {
+      out += "...";
+      break;
+    }
+    auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c < 0x7f) {
+      out += ch;
+    } else {
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "\\x%02X", c);
+      out += hex;
+    }
+  }
+  return out + "'";
+}
+
+}  // namespace meshdev::io_detail

@@ -1,0 +1,90 @@
+#pragma once
+// Shared low-level pieces of the mesh readers (not part of the public API): reading a whole file,
+// splitting text into lines and tokens, and strict number parsing with std::from_chars.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace meshdev::io_detail {
+
+// The whole file as bytes. Throws IoError("<path>: cannot open: <strerror>") if it cannot be
+// read (missing, a directory, no permission). O(file size).
+std::string read_file_bytes(const std::string& path);
+
+// `text` without a leading UTF-8 byte order mark.
+std::string_view strip_bom(std::string_view text);
+
+// The folder of `path` ("" for a bare file name), for resolving mtllib / map_Kd / TextureFile.
+std::string folder_of(const std::string& path);
+
+// `name` as written in a file (Windows `.\x.jpg` accepted) resolved against `folder`.
+std::string resolve_relative(const std::string& folder, std::string_view name);
+
+// Splits text into lines on '\n'; a trailing '\r' (CRLF) is removed. O(1) per line plus its length.
+class LineReader {
+ public:
+  // Starts at byte `start`; the first line returned is numbered lines_before + 1.
+  explicit LineReader(std::string_view text, std::size_t start = 0, std::size_t lines_before = 0)
+      : text_(text), pos_(start), line_(lines_before) {}
+  // The next line; false at the end of the text.
+  bool next(std::string_view& line);
+  // 1-based number of the line last returned by next().
+  std::size_t line_number() const { return line_; }
+  // Byte offset of the first byte not yet returned.
+  std::size_t offset() const { return pos_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::size_t line_ = 0;
+};
+
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == '\n';
+}
+
+// Whitespace-separated tokens of one line.
+class Tokens {
+ public:
+  explicit Tokens(std::string_view line) : s_(line) {}
+  // The next token; false when none is left.
+  bool next(std::string_view& token) {
+    while (pos_ < s_.size() && is_space(s_[pos_])) ++pos_;
+    if (pos_ >= s_.size()) return false;
+    std::size_t begin = pos_;
+    while (pos_ < s_.size() && !is_space(s_[pos_])) ++pos_;
+    token = s_.substr(begin, pos_ - begin);
+    return true;
+  }
+  // Everything after the current position, trimmed.
+  std::string_view rest() const;
+  bool empty_rest() const { return rest().empty(); }
+
+ private:
+  std::string_view s_;
+  std::size_t pos_ = 0;
+};
+
+// `s` without leading and trailing whitespace.
+std::string_view trim(std::string_view s);
+
+// `line` up to (not including) the first '#'.
+std::string_view strip_comment(std::string_view line);
+
+enum class NumberStatus { kOk, kNotNumber, kNotFinite };
+
+// Parses a whole token as a finite double (an optional leading '+' is accepted). nan, inf and
+// values overflowing double are kNotFinite; subnormal underflow is accepted.
+NumberStatus parse_double(std::string_view token, double& out);
+
+// Parses a whole token as a decimal integer (optional leading '+').
+NumberStatus parse_int(std::string_view token, std::int64_t& out);
+
+// "'abc' is not a number" / "'nan' is not a finite number", for error messages.
+std::string describe_bad_number(std::string_view token, NumberStatus status);
+
+// `token` quoted for an error message: at most 40 characters, non-printable bytes as \xNN.
+std::string quoted(std::string_view token);
+
+}  // namespace meshdev::io_detail
