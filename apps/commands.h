@@ -8,6 +8,7 @@ class App;
 namespace meshdev::app {
 
 void add_info_command(CLI::App& root, int& exit_code);
+void add_simplify_command(CLI::App& root, int& exit_code);
 void add_compare_command(CLI::App& root, int& exit_code);
 
 }  // namespace meshdev::app

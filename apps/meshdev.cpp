@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = kOk;
   add_info_command(app, exit_code);
+  add_simplify_command(app, exit_code);
   add_compare_command(app, exit_code);
 
   try {
