@@ -10,5 +10,6 @@ namespace meshdev::app {
 void add_info_command(CLI::App& root, int& exit_code);
 void add_simplify_command(CLI::App& root, int& exit_code);
 void add_compare_command(CLI::App& root, int& exit_code);
+void add_render_command(CLI::App& root, int& exit_code);
 
 }  // namespace meshdev::app

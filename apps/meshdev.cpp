@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_info_command(app, exit_code);
   add_simplify_command(app, exit_code);
   add_compare_command(app, exit_code);
+  add_render_command(app, exit_code);
 
   try {
     app.parse(argc, argv);

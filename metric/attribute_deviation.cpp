@@ -5,6 +5,10 @@
 #include <algorithm>
 #include <cassert>
 #include <limits>
+#include <memory>
+
+#include "metric/texture_deviation.h"
+#include "metric/uv_index.h"
 
 namespace meshdev {
 namespace {
@@ -20,6 +24,8 @@ std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const Pr
                                          const std::vector<Measure>& measures) {
   std::vector<ChannelGroup> groups;
   for (std::size_t m = 1; m < measures.size(); ++m) {
+    if (measures[m].kind == MeasureKind::kCohenTexture || is_texture_color(measures[m].kind))
+      continue;  // handled separately: they look up images or B's parameterisation
     const AttributeChannel* ca = reference.channel(measures[m].channel);
     const AttributeChannel* cb = target.channel(measures[m].channel);
     assert(ca != nullptr && cb != nullptr && ca->dim == cb->dim);
@@ -54,10 +60,29 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   const auto chunks = static_cast<std::int64_t>((n + kChunk - 1) / kChunk);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
 
+  // Cohen's measure and texture colours: the texcoord channels, B's UV index, the images.
+  std::vector<std::size_t> cohen, texture;
+  for (std::size_t m = 1; m < measures.size(); ++m) {
+    if (measures[m].kind == MeasureKind::kCohenTexture) cohen.push_back(m);
+    if (is_texture_color(measures[m].kind)) texture.push_back(m);
+  }
+  const AttributeChannel* uv_ref = reference.channel("texcoord");
+  const AttributeChannel* uv_tgt = target.channel("texcoord");
+  std::unique_ptr<UvIndex> uv_index;
+  const double same_point = 1e-9 * bounding_box(tgt).diagonal();
+  if (!cohen.empty()) {
+    assert(uv_ref != nullptr && uv_tgt != nullptr);
+    uv_index = std::make_unique<UvIndex>(tgt, *uv_tgt);
+    out.cohen_case.assign(n, 0);
+  }
+  if (!texture.empty()) assert(reference.texture && target.texture && uv_ref && uv_tgt);
+  std::vector<double> uv_gap(cohen.empty() ? 0 : n, 0.0);
+
 #pragma omp parallel num_threads(threads)
   {
     std::vector<SurfaceHit> ties;
     std::vector<double> best;
+    std::vector<UvHit> uv_hits;
     double fa[16], fb[16];
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
@@ -92,8 +117,37 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
           for (std::size_t k = 0; k < g.measures.size(); ++k)
             out.values[g.measures[k]][i] = best[k];
         }
+
+        if (cohen.empty() && texture.empty()) continue;
+        double uv[2];
+        interpolate(*uv_ref, ref, s.face, s.bary, s.vertex, uv);
+        if (!cohen.empty()) {  // p'' = the point of B with p's UV (Eq. 2)
+          const CohenResult c =
+              cohen_texture_deviation(s.point, uv[0], uv[1], tgt, *uv_index, same_point, uv_hits);
+          for (std::size_t m : cohen) out.values[m][i] = c.distance;
+          out.cohen_case[i] = static_cast<std::uint8_t>(c.kind);
+          uv_gap[i] = c.uv_gap;
+        }
+        if (!texture.empty()) {  // texture colours at the UVs of p and p', minimum over ties
+          const Vec3 ca = sample_bilinear(*reference.texture, uv[0], uv[1]);
+          const double ta[3] = {ca.x, ca.y, ca.z};
+          best.assign(texture.size(), std::numeric_limits<double>::infinity());
+          for (const SurfaceHit& h : ties) {
+            interpolate(*uv_tgt, tgt, h.face, h.bary, kNoFace, fb);
+            const Vec3 cb = sample_bilinear(*target.texture, fb[0], fb[1]);
+            const double tb[3] = {cb.x, cb.y, cb.z};
+            for (std::size_t k = 0; k < texture.size(); ++k)
+              best[k] = std::min(best[k], attribute_distance(measures[texture[k]].kind, ta, tb, 3));
+          }
+          for (std::size_t k = 0; k < texture.size(); ++k) out.values[texture[k]][i] = best[k];
+        }
       }
     }
+  }
+  for (std::size_t i = 0; i < out.cohen_case.size(); ++i) {
+    out.cohen_multiple += out.cohen_case[i] == static_cast<std::uint8_t>(CohenCase::kMultiple);
+    out.cohen_outside += out.cohen_case[i] == static_cast<std::uint8_t>(CohenCase::kOutside);
+    out.cohen_max_uv_gap = std::max(out.cohen_max_uv_gap, uv_gap[i]);
   }
   return out;
 }

@@ -1,7 +1,9 @@
 #pragma once
 // The attribute deviation of every sample (paper Eq. 3-4): for sample p on the reference mesh,
 // the nearest points p' on the target surface and, per measure, d_i(p) = ||f_i(p) - f_i(p')||,
-// the minimum over all equidistant p' (the paper's tie rule, §3.1).
+// the minimum over all equidistant p' (the paper's tie rule, §3.1). Texture-colour measures compare
+// the texture images at the UVs of p and p' (minimum over ties); Cohen's texture deviation is not
+// a nearest-point measure: p'' is the point of the target with p's UV (metric/texture_deviation.h).
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +21,11 @@ struct SampleDeviations {
   std::vector<std::vector<double>> values;  // values[measure][sample], measure 0 = geometry
   std::vector<SurfaceHit> nearest;          // per sample: the tie with the lowest face index
   std::vector<std::uint32_t> tie_count;     // per sample: number of equidistant target faces
+  // Only when Cohen's texture deviation is measured (see metric/texture_deviation.h):
+  std::vector<std::uint8_t> cohen_case;  // per sample: a CohenCase
+  std::size_t cohen_multiple = 0;        // samples whose UV lies at several distinct points of B
+  std::size_t cohen_outside = 0;         // samples whose UV lies on no face of B
+  double cohen_max_uv_gap = 0;           // largest UV distance of an outside sample to B's UVs
 };
 
 // Deviation of each sample of `reference` against `target` (whose index is `index`), for every

@@ -49,7 +49,37 @@ Vec3 unit_or_zero(const double* v) {
   return len > 0.0 ? (1.0 / len) * n : Vec3{};
 }
 
+void add_cohen_measure(std::vector<Measure>& out) {
+  out.push_back({"texcoord_cohen", MeasureKind::kCohenTexture, "texcoord",
+                 "mesh units (Cohen: distance to the point of the other mesh with the same UV)"});
+}
+
+void add_texture_measures(std::vector<Measure>& out) {
+  out.push_back({"texture_color", MeasureKind::kTextureColorRgb, "texcoord",
+                 "texture sRGB distance, components in [0,1]"});
+  out.push_back(
+      {"texture_color_de76", MeasureKind::kTextureColorDeltaE76, "texcoord", "CIE76 delta E"});
+  out.push_back({"texture_color_de2000", MeasureKind::kTextureColorDeltaE2000, "texcoord",
+                 "CIEDE2000 delta E"});
+}
+
+// The "texcoord" channel of both meshes, 2-D, or InvalidInput naming what is missing.
+void require_texcoords(const TriMesh& a, const TriMesh& b, const std::string& what,
+                       const std::string& label_a, const std::string& label_b) {
+  for (int k = 0; k < 2; ++k) {
+    const AttributeChannel* c = (k == 0 ? a : b).channel("texcoord");
+    if (c == nullptr || c->dim != 2)
+      throw InvalidInput("'" + what + "' was requested but " + (k == 0 ? label_a : label_b) +
+                         " has no 2-D texture coordinates");
+  }
+}
+
 }  // namespace
+
+bool is_texture_color(MeasureKind kind) {
+  return kind == MeasureKind::kTextureColorRgb || kind == MeasureKind::kTextureColorDeltaE76 ||
+         kind == MeasureKind::kTextureColorDeltaE2000;
+}
 
 const AttributeChannel* PreparedMesh::channel(std::string_view name) const {
   for (const AttributeChannel& c : computed)
@@ -112,6 +142,30 @@ AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const Attribut
       add_channel_measures(*plan.a.channel("normal"), plan.measures);
       continue;
     }
+    if (name == "cohen" || name == "texcoord_cohen") {
+      require_texcoords(a, b, name, label_a, label_b);
+      done.insert(done.end(), {"cohen", "texcoord_cohen"});
+      if (std::find(done.begin(), done.end(), "texcoord") == done.end()) {
+        done.push_back("texcoord");
+        add_channel_measures(*a.channel("texcoord"), plan.measures);
+      }
+      add_cohen_measure(plan.measures);
+      continue;
+    }
+    if (name == "texture" || name == "texture_color") {
+      require_texcoords(a, b, name, label_a, label_b);
+      done.insert(done.end(), {"texture", "texture_color"});
+      for (int k = 0; k < 2; ++k) {
+        const TriMesh& m = k == 0 ? a : b;
+        if (m.texture_file.empty())
+          throw InvalidInput("'texture' was requested but " + (k == 0 ? label_a : label_b) +
+                             " names no texture image (OBJ map_Kd or PLY comment TextureFile)");
+        (k == 0 ? plan.a : plan.b).texture =
+            std::make_shared<const Image>(load_image(m.texture_file));
+      }
+      add_texture_measures(plan.measures);
+      continue;
+    }
     const AttributeChannel* ca = a.channel(name);
     const AttributeChannel* cb = b.channel(name);
     if (ca == nullptr || cb == nullptr)
@@ -161,7 +215,13 @@ double attribute_distance(MeasureKind kind, const double* x, const double* y, in
       return delta_e76(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
     case MeasureKind::kColorDeltaE2000:
       return delta_e2000(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
+    case MeasureKind::kTextureColorDeltaE76:
+      return delta_e76(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
+    case MeasureKind::kTextureColorDeltaE2000:
+      return delta_e2000(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
     case MeasureKind::kGeometry:
+    case MeasureKind::kCohenTexture:
+    case MeasureKind::kTextureColorRgb:
     case MeasureKind::kColorRgb:
     case MeasureKind::kTexCoord:
     case MeasureKind::kScalar:

@@ -3,11 +3,13 @@
 // two values are compared (the f_i and ||.|| of the paper's Eq. 3).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "metric/mesh.h"
+#include "metric/texture_image.h"
 
 namespace meshdev {
 
@@ -20,7 +22,17 @@ enum class MeasureKind : std::uint8_t {
   kColorDeltaE2000,  // CIEDE2000 ΔE00
   kTexCoord,         // Euclidean distance in (u, v)
   kScalar,           // Euclidean distance of any other channel (absolute value for 1-D)
+  // Not nearest-point measures of a channel value (metric/texture_deviation.h):
+  kCohenTexture,  // Cohen's texture deviation (paper Eq. 2): |p - p''|, p'' = the point of the
+                  // target with the same (u, v) as p; mesh units
+  // The colour of each mesh's texture image at the (u, v) of p and of the nearest point p':
+  kTextureColorRgb,         // Euclidean sRGB distance, components in [0, 1]
+  kTextureColorDeltaE76,    // CIE76 ΔE*ab
+  kTextureColorDeltaE2000,  // CIEDE2000 ΔE00
 };
+
+// True for the measures that compare texture images (need PreparedMesh::texture on both sides).
+bool is_texture_color(MeasureKind kind);
 
 struct Measure {
   std::string name;  // column/key name: geometry, normal, normal_angle, color, color_de76, ...
@@ -40,7 +52,11 @@ enum class NormalSource : std::uint8_t {
 
 struct AttributeOptions {
   // Attributes to measure: "geometry", "normal", "color", "texcoord" or a channel name present on
-  // both meshes (e.g. "quality", "temperature"). Empty = automatic: geometry, normal, and every
+  // both meshes (e.g. "quality", "temperature"); "cohen" adds Cohen's texture deviation
+  // ("texcoord_cohen", with "texcoord" beside it); "texture" compares the texture images at the
+  // texture coordinates (texture_color, texture_color_de76, texture_color_de2000; both meshes
+  // need "texcoord" and a texture_file, which is read here: IoError if unreadable). Neither is
+  // part of the automatic set. Empty = automatic: geometry, normal, and every
   // channel present on both meshes with the same dimension. An explicitly requested attribute
   // missing on either mesh is an InvalidInput error.
   std::vector<std::string> attributes;
@@ -51,6 +67,7 @@ struct AttributeOptions {
 struct PreparedMesh {
   const TriMesh* mesh = nullptr;
   std::vector<AttributeChannel> computed;  // looked up before the mesh's own channels
+  std::shared_ptr<const Image> texture;    // the mesh's texture_file, when "texture" is measured
 
   const AttributeChannel* channel(std::string_view name) const;
 };

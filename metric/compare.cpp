@@ -59,6 +59,9 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
     ++r.nearest_feature[static_cast<int>(dev.nearest[i].feature)];
     r.samples_with_ties += dev.tie_count[i] > 1;
   }
+  r.cohen_multiple = dev.cohen_multiple;
+  r.cohen_outside = dev.cohen_outside;
+  r.cohen_max_uv_gap = dev.cohen_max_uv_gap;
   if (o.keep_samples) {
     r.sample_set = std::move(samples);
     r.deviations = std::move(dev);

@@ -59,6 +59,10 @@ struct DirectionResult {
   std::vector<Location> max_location;            // per measure
   std::array<std::size_t, 3> nearest_feature{};  // samples whose nearest lies on a vertex/edge/face
   std::size_t samples_with_ties = 0;             // samples with more than one equidistant face
+  // Cohen's texture deviation only (metric/texture_deviation.h): how F_b^-1(u, v) was resolved.
+  std::size_t cohen_multiple = 0;  // samples whose UV lies at several distinct points of B (min)
+  std::size_t cohen_outside = 0;   // samples whose UV lies on no face of B (UV-nearest point)
+  double cohen_max_uv_gap = 0;     // the largest UV distance of such a sample to B's UVs
   double seconds_sampling = 0, seconds_index = 0, seconds_query = 0;
   std::string index;  // the nearest-point index used
   // Only with keep_samples:

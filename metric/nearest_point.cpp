@@ -1,10 +1,13 @@
 #include "metric/nearest_point.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "metric/errors.h"
 #include "metric/nearest_point_brute.h"
 #include "metric/triangle_bvh.h"
+#include "metric/triangle_grid.h"
 
 namespace meshdev {
 
@@ -13,7 +16,8 @@ std::unique_ptr<NearestPointIndex> make_nearest_point_index(const TriMesh& targe
   if (target.faces.empty())
     throw InvalidInput("the target mesh has no faces: nearest points on a surface need triangles");
   if (kind == IndexKind::kBruteForce) return std::make_unique<NearestPointBrute>(target, ties);
-  return std::make_unique<TriangleBvh>(target, ties);
+  if (kind == IndexKind::kBvh) return std::make_unique<TriangleBvh>(target, ties);
+  return std::make_unique<TriangleGrid>(target, ties);
 }
 
 namespace detail {
@@ -44,6 +48,20 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties)
   const double diag = bounding_box(m).diagonal();
   tie_absolute = ties.absolute_fraction * diag;
   exact_check_sq = (1e-9 * diag) * (1e-9 * diag);
+  spheres.resize(m.faces.size());
+  for (std::size_t f = 0; f < m.faces.size(); ++f) {
+    const Triangle& t = m.faces[f];
+    const Vec3 c = (1.0 / 3.0) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]);
+    Sphere& s = spheres[f];
+    for (int k = 0; k < 3; ++k) s.center[k] = static_cast<float>(c[k]);
+    const Vec3 cf{s.center[0], s.center[1], s.center[2]};
+    double r = 0.0;
+    for (std::uint32_t v : t) r = std::max(r, norm(m.positions[v] - cf));
+    // Round up so the float radius still covers every corner.
+    float rf = static_cast<float>(r);
+    while (static_cast<double>(rf) < r) rf = std::nextafter(rf, std::numeric_limits<float>::infinity());
+    s.radius = rf;
+  }
 }
 
 SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const {

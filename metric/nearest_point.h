@@ -61,7 +61,11 @@ class NearestPointIndex {
                       std::vector<SurfaceHit>& ties) const = 0;
 };
 
-enum class IndexKind { kBvh, kBruteForce };
+enum class IndexKind {
+  kGrid,        // hashed uniform grid with a BVH fallback (triangle_grid.h)
+  kBvh,         // bounding-volume hierarchy (triangle_bvh.h)
+  kBruteForce,  // every face, the test oracle (nearest_point_brute.h)
+};
 
 // Builds the index of the given kind over `target` (kept by reference: it must outlive the
 // index). Throws InvalidInput if the target has no faces.
@@ -77,10 +81,27 @@ struct FaceEvaluator {
   double tie_absolute = 0;    // absolute units
   double exact_check_sq = 0;  // hits closer than this are checked for an identical triangle
 
+  // A bounding sphere per face (float centre, radius rounded up so it stays conservative): a
+  // face whose sphere is farther than the current tie limit cannot be a candidate, so it is
+  // skipped without the exact test. 16 bytes per face.
+  struct Sphere {
+    float center[3];
+    float radius;
+  };
+  std::vector<Sphere> spheres;
+
   FaceEvaluator(const TriMesh& m, const TieOptions& ties);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
   // Squared tie limit for a minimum squared distance.
   double limit_sq(double best_sq) const;
+  // True if face cannot lie within distance `limit` (not squared) of p. Conservative: never
+  // true for a face the exact test would keep.
+  bool rejects(const Vec3& p, std::uint32_t face, double limit) const {
+    const Sphere& s = spheres[face];
+    const double dx = p.x - s.center[0], dy = p.y - s.center[1], dz = p.z - s.center[2];
+    const double reach = (static_cast<double>(s.radius) + limit) * (1.0 + 1e-12);
+    return dx * dx + dy * dy + dz * dz > reach * reach;
+  }
 };
 
 }  // namespace detail

@@ -99,7 +99,7 @@ const char* face_sampling_name(FaceSampling f) {
 
 std::string format_report(const ComparisonResult& r) {
   std::ostringstream o;
-  char line[256];
+  char line[512];
   o << "meshdev " << MESHDEV_VERSION << ": attribute deviation (Roy, Foufou & Truchetet 2004)\n\n";
   std::snprintf(line, sizeof line, "%-16s %18s %18s\n", "", "Mesh A", "Mesh B");
   o << line;
@@ -137,6 +137,16 @@ std::string format_report(const ComparisonResult& r) {
                   100.0 * static_cast<double>(d->nearest_feature[2]) / n,
                   with_commas(d->samples_with_ties).c_str());
     o << line;
+    for (const Measure& m : r.measures)
+      if (m.kind == MeasureKind::kCohenTexture) {
+        std::snprintf(line, sizeof line,
+                      "  texcoord_cohen: %s samples whose UV lies at several points of the other "
+                      "mesh (smallest distance kept), %s on none of its faces (UV-nearest point "
+                      "used, UV gap up to %.3g)\n",
+                      with_commas(d->cohen_multiple).c_str(), with_commas(d->cohen_outside).c_str(),
+                      d->cohen_max_uv_gap);
+        o << line;
+      }
     const Location& at = d->max_location[0];
     o << "  max geometric deviation at (" << short_num(at.point.x) << ", " << short_num(at.point.y)
       << ", " << short_num(at.point.z) << "), a " << sample_kind_name(at.kind)
@@ -187,7 +197,7 @@ std::string to_json(const ComparisonResult& r) {
         {"step_fraction", o.sampling.step_fraction},
         {"target_count", o.sampling.target_count},
         {"seed", o.sampling.seed}}},
-      {"index", o.index == IndexKind::kBvh ? "bvh" : "brute-force"},
+      {"index", o.index == IndexKind::kBvh ? "bvh" : o.index == IndexKind::kGrid ? "grid" : "brute-force"},
       {"ties", {{"relative", o.ties.relative}, {"absolute_fraction", o.ties.absolute_fraction}}},
       {"threads", o.threads}};
   j["normal_source"] = r.normal_source;
@@ -212,6 +222,11 @@ std::string to_json(const ComparisonResult& r) {
                 {{"sampling", d->seconds_sampling},
                  {"index", d->seconds_index},
                  {"query", d->seconds_query}}}};
+    for (const Measure& m : r.measures)
+      if (m.kind == MeasureKind::kCohenTexture)
+        dj["cohen"] = {{"multiple", d->cohen_multiple},
+                       {"outside", d->cohen_outside},
+                       {"max_uv_gap", d->cohen_max_uv_gap}};
     json stats = json::object();
     for (std::size_t m = 0; m < r.measures.size(); ++m) {
       json sj = stats_json(d->stats[m], m == 0 ? r.diagonal : 0.0);

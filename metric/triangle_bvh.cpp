@@ -10,6 +10,7 @@ namespace {
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kLeafSize = 4;
+constexpr int kMaxDepth = 60;  // deeper subtrees become (larger) leaves
 
 struct Box {
   double lo[3] = {+1e300, +1e300, +1e300};
@@ -100,7 +101,7 @@ void TriangleBvh::build() {
         extent = centroid_bounds.hi[k] - centroid_bounds.lo[k];
         axis = k;
       }
-    if (count <= kLeafSize) {
+    if (count <= kLeafSize || task.depth >= kMaxDepth) {
       node.index = task.begin;
       node.count = count;
       continue;
@@ -175,13 +176,15 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
                          std::vector<SurfaceHit>& ties) const {
   ties.clear();
   double best_sq = std::numeric_limits<double>::infinity();
-  double limit = best_sq;
+  double limit = best_sq, limit_dist = best_sq;
   auto consider = [&](std::uint32_t f) {
+    if (eval_.rejects(p, f, limit_dist)) return;
     SurfaceHit h = eval_.evaluate(p, f, hint);
     if (h.sq_distance > limit) return;
     if (h.sq_distance < best_sq) {
       best_sq = h.sq_distance;
       limit = eval_.limit_sq(best_sq);
+      limit_dist = std::sqrt(limit);
     }
     ties.push_back(h);
   };
@@ -192,12 +195,12 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
     std::uint32_t node;
     double sq;
   };
-  thread_local std::vector<Item> stack;
-  stack.clear();
-  stack.push_back({0, box_sq_distance(p, nodes_[0].lo, nodes_[0].hi)});
-  while (!stack.empty()) {
-    const Item item = stack.back();
-    stack.pop_back();
+  // The build caps the depth, so the stack (at most depth + 1 entries) fits on the stack.
+  Item stack[kMaxDepth + 2];
+  int top = 0;
+  stack[top++] = {0, box_sq_distance(p, nodes_[0].lo, nodes_[0].hi)};
+  while (top > 0) {
+    const Item item = stack[--top];
     if (item.sq > limit * kPruneSlack) continue;
     const Node& node = nodes_[item.node];
     if (node.count > 0) {
@@ -211,11 +214,11 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
     const double dr = box_sq_distance(p, r.lo, r.hi);
     // Push the farther child first so the nearer one is visited first.
     if (dl <= dr) {
-      if (dr <= limit * kPruneSlack) stack.push_back({node.index + 1, dr});
-      if (dl <= limit * kPruneSlack) stack.push_back({node.index, dl});
+      if (dr <= limit * kPruneSlack) stack[top++] = {node.index + 1, dr};
+      if (dl <= limit * kPruneSlack) stack[top++] = {node.index, dl};
     } else {
-      if (dl <= limit * kPruneSlack) stack.push_back({node.index, dl});
-      if (dr <= limit * kPruneSlack) stack.push_back({node.index + 1, dr});
+      if (dl <= limit * kPruneSlack) stack[top++] = {node.index, dl};
+      if (dr <= limit * kPruneSlack) stack[top++] = {node.index + 1, dr};
     }
   }
   // Keep the candidates within the final tie limit, in face order (as the oracle does).

@@ -7,6 +7,7 @@
 #include "metric/errors.h"
 #include "metric/nearest_point_brute.h"
 #include "metric/triangle_bvh.h"
+#include "metric/triangle_grid.h"
 #include "tests/support/shapes.h"
 
 namespace meshdev {
@@ -56,6 +57,37 @@ TEST(NearestPoint, BvhEqualsBruteForceOnASphereWithStartHints) {
     ASSERT_EQ(bvh.find(p, hint, tb), brute.find(p, {}, tf));
     expect_same(tb, tf);
     previous = tb.front().face;
+  }
+}
+
+// The grid's fast path and its BVH fallback must both give exactly the oracle's answer: queries
+// on and near the surface (fast path), far away (fallback) and outside the grid.
+TEST(NearestPoint, GridEqualsBruteForceNearAndFarFromTheSurface) {
+  for (std::uint64_t seed : {4u, 5u}) {
+    TriMesh soup = test::random_soup(600, seed);
+    TriMesh sphere = test::icosphere(3);
+    for (const TriMesh* m : {&soup, &sphere}) {
+      TriangleGrid grid(*m);
+      NearestPointBrute brute(*m);
+      std::mt19937_64 rng(seed);
+      std::uniform_real_distribution<double> u(0.0, 1.0), n(-1e-3, 1e-3), far(-3.0, 3.0);
+      std::vector<SurfaceHit> tg, tf;
+      for (int q = 0; q < 1500; ++q) {
+        Vec3 p;
+        if (q % 3 == 2) {
+          p = {far(rng), far(rng), far(rng)};
+        } else {  // a point on a random face, nudged off it
+          const Triangle& t = m->faces[rng() % m->faces.size()];
+          double a = u(rng), b = u(rng);
+          if (a + b > 1) a = 1 - a, b = 1 - b;
+          p = m->positions[t[0]] + a * (m->positions[t[1]] - m->positions[t[0]]) +
+              b * (m->positions[t[2]] - m->positions[t[0]]);
+          if (q % 3 == 1) p = p + Vec3{n(rng), n(rng), n(rng)};
+        }
+        ASSERT_EQ(grid.find(p, {}, tg), brute.find(p, {}, tf)) << "seed " << seed << " query " << q;
+        expect_same(tg, tf);
+      }
+    }
   }
 }
 
