@@ -17,6 +17,10 @@ int main(int argc, char** argv) {
   add_info_command(app, exit_code);
   add_simplify_command(app, exit_code);
   add_compare_command(app, exit_code);
+  add_sweep_command(app, exit_code);
+  add_plot_command(app, exit_code);
+  add_guard_command(app, exit_code);
+  add_merge_command(app, exit_code);
   add_render_command(app, exit_code);
 
   try {

@@ -49,7 +49,12 @@ demo() {
   echo "== meshdev compare bunny00.off bunny00_10.ply"
   "$meshdev" compare "$out/bunny00.off" "$out/bunny00_10.ply" \
     --json "$out/compare.json" --csv "$out/compare.csv" --colored "$out/bunny00_deviation.ply"
-  echo "== outputs in $out: compare.json, compare.csv, bunny00_deviation.ply (open it in MeshLab)"
+  echo "== meshdev sweep: 3 simplifiers (QSlim-, Jade-, ProgMesh-like) x 3 reduction ratios"
+  (cd "$out" && "$meshdev" sweep --mesh bunny00.off \
+    --simplifiers cgal-gh,openmesh-hausdorff,openmesh-quadric --ratios 50,90,98 \
+    --sample-count 200000 --jobs "$jobs" --out sweep)
+  echo "== outputs in $out: compare.json, compare.csv, bunny00_deviation.ply (open it in MeshLab),"
+  echo "   sweep/sweep.csv (one row per simplifier x ratio x measure), sweep/plots/bunny00_fig8.png"
 }
 
 run_tests() {
