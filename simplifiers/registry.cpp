@@ -4,6 +4,7 @@
 
 #include "metric/errors.h"
 #ifdef MESHDEV_HAVE_OPENMESH
+#include "simplifiers/openmesh_appearance.h"
 #include "simplifiers/openmesh_decimater.h"
 #endif
 #ifdef MESHDEV_HAVE_MESHOPT
@@ -11,6 +12,9 @@
 #endif
 #ifdef MESHDEV_HAVE_CGAL
 #include "simplifiers/cgal_edge_collapse.h"
+#endif
+#ifdef MESHDEV_HAVE_EXTERNAL
+#include "simplifiers/external_simplifiers.h"
 #endif
 
 namespace meshdev {
@@ -39,6 +43,7 @@ const std::vector<Entry>& entries() {
        [] { return std::make_unique<OpenMeshDecimater>(OpenMeshVariant::kHausdorff); }},
       {"openmesh-normal",
        [] { return std::make_unique<OpenMeshDecimater>(OpenMeshVariant::kNormal); }},
+      {"openmesh-appearance", [] { return std::make_unique<OpenMeshAppearance>(); }},
 #else
       {"openmesh-quadric", missing("openmesh-quadric", "OpenMesh Decimater, ModQuadric",
                                    "ProgMesh-like", "built without MESHDEV_WITH_OPENMESH")},
@@ -48,6 +53,9 @@ const std::vector<Entry>& entries() {
       {"openmesh-normal",
        missing("openmesh-normal", "OpenMesh Decimater, ModQuadric + normal constraints",
                "quadric with normal constraints", "built without MESHDEV_WITH_OPENMESH")},
+      {"openmesh-appearance",
+       missing("openmesh-appearance", "OpenMesh halfedge collapses, generalized quadric (GH98)",
+               "appearance-preserving quadric (GH98)", "built without MESHDEV_WITH_OPENMESH")},
 #endif
 #ifdef MESHDEV_HAVE_MESHOPT
       {"meshopt", [] { return std::make_unique<MeshoptSimplifier>(MeshoptVariant::kSimplify); }},
@@ -70,6 +78,22 @@ const std::vector<Entry>& entries() {
       {"cgal-lt",
        missing("cgal-lt", "CGAL edge_collapse, Lindstrom-Turk", "Lindstrom-Turk (memoryless)",
                "built without MESHDEV_WITH_CGAL (libcgal-dev)")},
+#endif
+#ifdef MESHDEV_HAVE_EXTERNAL
+      {"meshlab-qec", [] { return std::make_unique<MeshlabQec>(false); }},
+      {"meshlab-qec-tex", [] { return std::make_unique<MeshlabQec>(true); }},
+      {"vtk-quadric", [] { return std::make_unique<VtkQuadric>(); }},
+      {"external", [] { return std::make_unique<ExternalCommand>(); }},
+#else
+      {"meshlab-qec", missing("meshlab-qec", "meshlabserver Quadric Edge Collapse",
+                              "QSlim-like (external process)", "needs a POSIX build")},
+      {"meshlab-qec-tex",
+       missing("meshlab-qec-tex", "meshlabserver Quadric Edge Collapse (with texture)",
+               "QSlim-like with UV seams (external process)", "needs a POSIX build")},
+      {"vtk-quadric", missing("vtk-quadric", "VTK vtkQuadricDecimation",
+                              "attribute-aware quadric (external process)", "needs a POSIX build")},
+      {"external", missing("external", "command template", "user-supplied external simplifier",
+                           "needs a POSIX build")},
 #endif
   };
   return list;
