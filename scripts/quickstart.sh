@@ -16,7 +16,7 @@ packages=(
   build-essential cmake pkg-config git
   libopenmesh-dev libopenmesh-apps libgtest-dev libgmock-dev libbenchmark-dev libcli11-dev
   nlohmann-json3-dev libmeshoptimizer-dev libcgal-dev libeigen3-dev
-  libcgal-demo python3 python3-matplotlib meshlab xvfb xauth
+  libcgal-demo libstb-dev python3 python3-matplotlib python3-vtk9 meshlab xvfb xauth
 )
 
 setup() {
