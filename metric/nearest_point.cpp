@@ -47,7 +47,14 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties)
     : mesh(&m), tie_relative(ties.relative) {
   const double diag = bounding_box(m).diagonal();
   tie_absolute = ties.absolute_fraction * diag;
-  exact_check_sq = (1e-9 * diag) * (1e-9 * diag);
+  // Sample points far from the origin carry the rounding of their absolute coordinates (about
+  // 1e-16 of their magnitude), so the identical-triangle check must look that far. It is only a
+  // shortcut: the check itself requires bitwise-identical corners.
+  double magnitude = 0.0;
+  for (const Vec3& p : m.positions)
+    magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  const double reach = 1e-9 * diag + 1e-14 * magnitude;
+  exact_check_sq = reach * reach;
   spheres.resize(m.faces.size());
   for (std::size_t f = 0; f < m.faces.size(); ++f) {
     const Triangle& t = m.faces[f];
@@ -59,7 +66,8 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties)
     for (std::uint32_t v : t) r = std::max(r, norm(m.positions[v] - cf));
     // Round up so the float radius still covers every corner.
     float rf = static_cast<float>(r);
-    while (static_cast<double>(rf) < r) rf = std::nextafter(rf, std::numeric_limits<float>::infinity());
+    while (static_cast<double>(rf) < r)
+      rf = std::nextafter(rf, std::numeric_limits<float>::infinity());
     s.radius = rf;
   }
 }
@@ -86,6 +94,15 @@ SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const Quer
 double FaceEvaluator::limit_sq(double best_sq) const {
   const double limit = std::sqrt(best_sq) * (1.0 + tie_relative) + tie_absolute;
   return limit * limit;
+}
+
+void keep_ties(std::vector<SurfaceHit>& ties, double limit_sq) {
+  std::size_t kept = 0;
+  for (const SurfaceHit& h : ties)
+    if (h.sq_distance <= limit_sq) ties[kept++] = h;
+  ties.resize(kept);
+  std::sort(ties.begin(), ties.end(),
+            [](const SurfaceHit& x, const SurfaceHit& y) { return x.face < y.face; });
 }
 
 }  // namespace detail

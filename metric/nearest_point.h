@@ -104,5 +104,9 @@ struct FaceEvaluator {
   }
 };
 
+// Keeps the candidates within the final squared tie limit, sorted by face index (what the
+// brute-force oracle returns). O(k log k) for k candidates.
+void keep_ties(std::vector<SurfaceHit>& ties, double limit_sq);
+
 }  // namespace detail
 }  // namespace meshdev

@@ -18,11 +18,7 @@ double NearestPointBrute::find(const Vec3& p, const QueryHint& hint,
     if (h.sq_distance < best_sq) best_sq = h.sq_distance;
     ties.push_back(h);
   }
-  const double limit = eval_.limit_sq(best_sq);
-  std::size_t kept = 0;
-  for (const SurfaceHit& h : ties)
-    if (h.sq_distance <= limit) ties[kept++] = h;
-  ties.resize(kept);
+  detail::keep_ties(ties, eval_.limit_sq(best_sq));
   return std::sqrt(best_sq);
 }
 

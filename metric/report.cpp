@@ -197,7 +197,9 @@ std::string to_json(const ComparisonResult& r) {
         {"step_fraction", o.sampling.step_fraction},
         {"target_count", o.sampling.target_count},
         {"seed", o.sampling.seed}}},
-      {"index", o.index == IndexKind::kBvh ? "bvh" : o.index == IndexKind::kGrid ? "grid" : "brute-force"},
+      {"index", o.index == IndexKind::kBvh    ? "bvh"
+                : o.index == IndexKind::kGrid ? "grid"
+                                              : "brute-force"},
       {"ties", {{"relative", o.ties.relative}, {"absolute_fraction", o.ties.absolute_fraction}}},
       {"threads", o.threads}};
   j["normal_source"] = r.normal_source;

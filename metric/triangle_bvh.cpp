@@ -177,8 +177,13 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
   ties.clear();
   double best_sq = std::numeric_limits<double>::infinity();
   double limit = best_sq, limit_dist = best_sq;
+  // A face identical to the query's source triangle counts as distance 0 however far rounding
+  // put the query from it (FaceEvaluator::evaluate), so such faces are never pruned: the search
+  // never narrows below the reach of that check.
+  const double floor_sq = hint.source != nullptr ? eval_.exact_check_sq : 0.0;
+  const double floor_dist = std::sqrt(floor_sq);
   auto consider = [&](std::uint32_t f) {
-    if (eval_.rejects(p, f, limit_dist)) return;
+    if (eval_.rejects(p, f, std::max(limit_dist, floor_dist))) return;
     SurfaceHit h = eval_.evaluate(p, f, hint);
     if (h.sq_distance > limit) return;
     if (h.sq_distance < best_sq) {
@@ -201,7 +206,8 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
   stack[top++] = {0, box_sq_distance(p, nodes_[0].lo, nodes_[0].hi)};
   while (top > 0) {
     const Item item = stack[--top];
-    if (item.sq > limit * kPruneSlack) continue;
+    const double prune = std::max(limit, floor_sq) * kPruneSlack;
+    if (item.sq > prune) continue;
     const Node& node = nodes_[item.node];
     if (node.count > 0) {
       for (std::uint32_t i = node.index; i < node.index + node.count; ++i)
@@ -214,20 +220,15 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
     const double dr = box_sq_distance(p, r.lo, r.hi);
     // Push the farther child first so the nearer one is visited first.
     if (dl <= dr) {
-      if (dr <= limit * kPruneSlack) stack[top++] = {node.index + 1, dr};
-      if (dl <= limit * kPruneSlack) stack[top++] = {node.index, dl};
+      if (dr <= prune) stack[top++] = {node.index + 1, dr};
+      if (dl <= prune) stack[top++] = {node.index, dl};
     } else {
-      if (dl <= limit * kPruneSlack) stack[top++] = {node.index, dl};
-      if (dr <= limit * kPruneSlack) stack[top++] = {node.index + 1, dr};
+      if (dl <= prune) stack[top++] = {node.index, dl};
+      if (dr <= prune) stack[top++] = {node.index + 1, dr};
     }
   }
   // Keep the candidates within the final tie limit, in face order (as the oracle does).
-  std::size_t kept = 0;
-  for (const SurfaceHit& h : ties)
-    if (h.sq_distance <= limit) ties[kept++] = h;
-  ties.resize(kept);
-  std::sort(ties.begin(), ties.end(),
-            [](const SurfaceHit& x, const SurfaceHit& y) { return x.face < y.face; });
+  detail::keep_ties(ties, limit);
   return std::sqrt(best_sq);
 }
 

@@ -56,10 +56,10 @@ TriangleGrid::TriangleGrid(const TriMesh& target, const TieOptions& ties)
           mn = std::min(mn, target.positions[v][k]);
           mx = std::max(mx, target.positions[v][k]);
         }
-        lo[k] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((mn - origin_[k]) * inv_h_)), 0,
-                                         dims_[k] - 1);
-        hi[k] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((mx - origin_[k]) * inv_h_)), 0,
-                                         dims_[k] - 1);
+        lo[k] = std::clamp<std::int64_t>(
+            static_cast<std::int64_t>(std::floor((mn - origin_[k]) * inv_h_)), 0, dims_[k] - 1);
+        hi[k] = std::clamp<std::int64_t>(
+            static_cast<std::int64_t>(std::floor((mx - origin_[k]) * inv_h_)), 0, dims_[k] - 1);
       }
       for (std::int64_t i = lo[0]; i <= hi[0] && !over; ++i)
         for (std::int64_t j = lo[1]; j <= hi[1] && !over; ++j)
@@ -80,7 +80,8 @@ TriangleGrid::TriangleGrid(const TriMesh& target, const TieOptions& ties)
   refs_.resize(pairs.size());
   for (std::size_t i = 0; i < pairs.size(); ++i) refs_[i] = pairs[i].second;
   cell_count_ = 0;
-  for (std::size_t i = 0; i < pairs.size(); ++i) cell_count_ += (i == 0 || pairs[i].first != pairs[i - 1].first);
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    cell_count_ += (i == 0 || pairs[i].first != pairs[i - 1].first);
   std::size_t capacity = 16;
   while (capacity < 2 * cell_count_) capacity *= 2;
   table_.assign(capacity, Slot{});
@@ -90,11 +91,13 @@ TriangleGrid::TriangleGrid(const TriMesh& target, const TieOptions& ties)
     while (end < pairs.size() && pairs[end].first == pairs[begin].first) ++end;
     std::size_t s = hash(pairs[begin].first, mask);
     while (table_[s].key != kEmpty) s = (s + 1) & mask;
-    table_[s] = {pairs[begin].first, static_cast<std::uint32_t>(begin), static_cast<std::uint32_t>(end)};
+    table_[s] = {pairs[begin].first, static_cast<std::uint32_t>(begin),
+                 static_cast<std::uint32_t>(end)};
     begin = end;
   }
   double magnitude = 0.0;
-  for (int k = 0; k < 3; ++k) magnitude = std::max(magnitude, std::fabs(origin_[k]) + extent[k] + h_);
+  for (int k = 0; k < 3; ++k)
+    magnitude = std::max(magnitude, std::fabs(origin_[k]) + extent[k] + h_);
   slack_ = 1e-9 * h_ + 1e-12 * magnitude;
 }
 
@@ -110,7 +113,8 @@ const TriangleGrid::Slot* TriangleGrid::lookup(std::uint64_t key) const {
   }
 }
 
-double TriangleGrid::find(const Vec3& p, const QueryHint& hint, std::vector<SurfaceHit>& ties) const {
+double TriangleGrid::find(const Vec3& p, const QueryHint& hint,
+                          std::vector<SurfaceHit>& ties) const {
   std::int64_t cell[3];
   for (int k = 0; k < 3; ++k) {
     const double q = (p[k] - origin_[k]) * inv_h_;
@@ -124,8 +128,11 @@ double TriangleGrid::find(const Vec3& p, const QueryHint& hint, std::vector<Surf
   double best_sq = std::numeric_limits<double>::infinity();
   double limit = best_sq, limit_dist = best_sq;
   std::uint32_t best_face = kNoFace;
+  // Faces identical to the query's source triangle are kept within the exact check's reach (see
+  // TriangleBvh::find), so the search radius never falls below it.
+  const double floor_dist = hint.source != nullptr ? std::sqrt(eval_.exact_check_sq) : 0.0;
   auto consider = [&](std::uint32_t f) {
-    if (eval_.rejects(p, f, limit_dist)) return;
+    if (eval_.rejects(p, f, std::max(limit_dist, floor_dist))) return;
     const SurfaceHit h = eval_.evaluate(p, f, hint);
     if (h.sq_distance > limit) return;
     if (h.sq_distance < best_sq) {
@@ -149,17 +156,12 @@ double TriangleGrid::find(const Vec3& p, const QueryHint& hint, std::vector<Surf
     const double lo = origin_[k] + static_cast<double>(cell[k]) * h_;
     margin = std::min({margin, p[k] - lo, lo + h_ - p[k]});
   }
-  if (!(std::sqrt(limit) + slack_ < margin)) {
+  if (!(std::max(std::sqrt(limit), floor_dist) + slack_ < margin)) {
     QueryHint seeded = hint;
     seeded.start_face = best_face;
     return bvh_.find(p, seeded, ties);
   }
-  std::size_t kept = 0;
-  for (const SurfaceHit& h : ties)
-    if (h.sq_distance <= limit) ties[kept++] = h;
-  ties.resize(kept);
-  std::sort(ties.begin(), ties.end(),
-            [](const SurfaceHit& x, const SurfaceHit& y) { return x.face < y.face; });
+  detail::keep_ties(ties, limit);
   return std::sqrt(best_sq);
 }
 

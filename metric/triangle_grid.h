@@ -30,7 +30,7 @@ class TriangleGrid final : public NearestPointIndex {
 
  private:
   struct Slot {
-    std::uint64_t key = kEmpty;  // packed cell coordinates, kEmpty if unused
+    std::uint64_t key = kEmpty;        // packed cell coordinates, kEmpty if unused
     std::uint32_t begin = 0, end = 0;  // range in refs_
   };
   static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
