@@ -11,6 +11,7 @@
 
 #include "metric/errors.h"
 #include "simplifiers/openmesh_convert.h"
+#include "simplifiers/openmesh_modules.h"
 
 namespace meshdev {
 namespace {
@@ -397,74 +398,6 @@ class ModAppearanceQuadric : public ModBase {
   OmMesh::HalfedgeHandle last_halfedge_;
 };
 
-// Keeps per-corner attributes consistent and seams in place: the rule of ModCornerSeamT in
-// openmesh_decimater.cpp (kept private there). Before the collapse, each surviving face around
-// v0 takes the value v1 has in the removed face fl or fr of the same chart; a collapse where some
-// face around v0 belongs to neither chart (v0 on a seam the edge does not follow) is illegal.
-class ModCornerSeam : public ModBase {
- public:
-  using Self = ModCornerSeam;
-  using Handle = OpenMesh::Decimater::ModHandleT<Self>;
-  using Base = ModBase;
-  DECIMATER_MODNAME(MeshdevAppearanceCornerSeam)
-
-  explicit ModCornerSeam(OmMesh& mesh) : Base(mesh, /*is_binary=*/true) {}
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    bool ok = true;
-    for (const OmChannelSlot* s : slots) ok = ok && visit(*s, ci, false);
-    return ok ? float(Base::LEGAL_COLLAPSE) : float(Base::ILLEGAL_COLLAPSE);
-  }
-  void preprocess_collapse(const CollapseInfo& ci) override {
-    for (const OmChannelSlot* s : slots) visit(*s, ci, true);
-  }
-
-  std::vector<const OmChannelSlot*> slots;
-
- private:
-  bool visit(const OmChannelSlot& s, const CollapseInfo& ci, bool apply) {
-    OmMesh& m = mesh();
-    switch (s.place) {
-      case OmChannelSlot::Place::kHalfedgeTexCoord:
-        return charts(
-            ci, apply, [&](auto h) { return m.texcoord2D(h); },
-            [&](auto h, const auto& x) { m.set_texcoord2D(h, x); });
-      case OmChannelSlot::Place::kHalfedgeNormal:
-        return charts(
-            ci, apply, [&](auto h) { return m.normal(h); },
-            [&](auto h, const auto& x) { m.set_normal(h, x); });
-      case OmChannelSlot::Place::kHalfedgeProperty:
-        return charts(
-            ci, apply, [&](auto h) { return m.property(s.hprop, h); },
-            [&](auto h, const auto& x) { m.property(s.hprop, h) = x; });
-      default:
-        return true;
-    }
-  }
-
-  template <class Get, class Set>
-  bool charts(const CollapseInfo& ci, bool apply, Get get, Set set) {
-    OmMesh& m = mesh();
-    const bool left = ci.fl.is_valid(), right = ci.fr.is_valid();
-    decltype(get(ci.v0v1)) a0{}, a1{}, b0{}, b1{};
-    if (left) a0 = get(m.prev_halfedge_handle(ci.v0v1)), a1 = get(ci.v0v1);
-    if (right) b0 = get(ci.v1v0), b1 = get(m.prev_halfedge_handle(ci.v1v0));
-    for (auto h : m.vih_range(ci.v0)) {
-      auto f = m.face_handle(h);
-      if (!f.is_valid() || f == ci.fl || f == ci.fr) continue;
-      auto value = get(h);
-      if (left && value == a0) {
-        if (apply) set(h, a1);
-      } else if (right && value == b0) {
-        if (apply) set(h, b1);
-      } else {
-        return false;
-      }
-    }
-    return true;
-  }
-};
-
 // ---------------------------------------------------------------------------------------------
 // The driver: DecimaterT's loop (best outgoing halfedge per vertex in a heap) with two changes:
 // a popped candidate is re-evaluated against the current mesh and re-queued if its priority
@@ -652,23 +585,10 @@ std::vector<SimplifyResult> OpenMeshAppearance::simplify_sweep(
   auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   OpenMeshQuiet quiet;
 
-  // 1. Convert; a face OpenMesh refuses (non-manifold) makes the run fail.
-  OpenMeshConversion conv = to_openmesh(mesh);
-  if (conv.refused_faces > 0) {
-    for (SimplifyResult& r : results) {
-      r.status = SimplifyStatus::kFailed;
-      r.message = "OpenMesh refused " + std::to_string(conv.refused_faces) + " of " +
-                  std::to_string(mesh.num_faces()) +
-                  " faces (non-manifold edge or vertex, or a repeated vertex index)";
-      r.wall_seconds = seconds();
-    }
-    return results;
-  }
+  // 1. Convert (a face OpenMesh refuses makes the run fail) and request the status flags.
+  OpenMeshConversion conv;
+  if (!convert_for_decimation(mesh, conv, results)) return results;
   OmMesh& om = conv.mesh;
-  om.request_vertex_status();
-  om.request_halfedge_status();
-  om.request_edge_status();
-  om.request_face_status();
   const Setup setup = make_setup(mesh, conv, options_);
   bool recompute_vertex_normals = false, face_normals = false;
   for (const OmChannelSlot* s : setup.copied)
@@ -683,7 +603,7 @@ std::vector<SimplifyResult> OpenMeshAppearance::simplify_sweep(
   dec.add(quadric);
   dec.module(quadric).setup = &setup;
   if (!setup.corner_slots.empty()) {
-    ModCornerSeam::Handle seam;
+    ModCornerSeamT<OmMesh>::Handle seam;
     dec.add(seam);
     dec.module(seam).slots = setup.corner_slots;
   }

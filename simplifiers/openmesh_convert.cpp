@@ -1,5 +1,7 @@
 #include "simplifiers/openmesh_convert.h"
 
+#include <chrono>
+
 #include <OpenMesh/Core/System/omstream.hh>
 
 namespace meshdev {
@@ -281,6 +283,29 @@ TriMesh from_openmesh(const OmMesh& om, const std::vector<OmChannelSlot>& slots)
     out.channels.push_back(std::move(c));
   }
   return out;
+}
+
+bool convert_for_decimation(const TriMesh& mesh, OpenMeshConversion& conv,
+                            std::vector<SimplifyResult>& results) {
+  const auto start = std::chrono::steady_clock::now();
+  conv = to_openmesh(mesh);
+  if (conv.refused_faces > 0) {
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (SimplifyResult& r : results) {
+      r.status = SimplifyStatus::kFailed;
+      r.message = "OpenMesh refused " + std::to_string(conv.refused_faces) + " of " +
+                  std::to_string(mesh.num_faces()) +
+                  " faces (non-manifold edge or vertex, or a repeated vertex index)";
+      r.wall_seconds = seconds;
+    }
+    return false;
+  }
+  conv.mesh.request_vertex_status();
+  conv.mesh.request_halfedge_status();
+  conv.mesh.request_edge_status();
+  conv.mesh.request_face_status();
+  return true;
 }
 
 }  // namespace meshdev

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "metric/mesh.h"
+#include "simplifiers/simplifier.h"
 
 namespace meshdev {
 
@@ -59,6 +60,13 @@ struct OpenMeshConversion {
 // OpenMesh refuses is counted in refused_faces and skipped, so face indices shift after it).
 // OpenMesh's own error output is silenced during the call. O(V + F + channel sizes).
 OpenMeshConversion to_openmesh(const TriMesh& mesh);
+
+// The common start of the OpenMesh-based backends: converts `mesh` into `conv` and requests the
+// vertex/halfedge/edge/face status flags (reference counted, so they outlive the decimater; see
+// docs/simplifiers.md). If OpenMesh refused faces (non-manifold input), every result becomes
+// kFailed with the reason and the conversion time, and false is returned. O(V + F).
+bool convert_for_decimation(const TriMesh& mesh, OpenMeshConversion& conv,
+                            std::vector<SimplifyResult>& results);
 
 // Converts back, skipping deleted elements (no garbage_collection needed) and vertices no face
 // uses; survivors keep their relative order. Fills the channels listed in `slots`.

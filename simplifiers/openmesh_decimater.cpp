@@ -14,6 +14,7 @@
 
 #include "metric/errors.h"
 #include "simplifiers/openmesh_convert.h"
+#include "simplifiers/openmesh_modules.h"
 
 namespace meshdev {
 namespace {
@@ -64,76 +65,6 @@ class ModNoDegenerateT : public OpenMesh::Decimater::ModBaseT<MeshT> {
     auto e0 = p[1] - p[0], e1 = p[2] - p[1], e2 = p[0] - p[2];
     double longest = std::max({e0.sqrnorm(), e1.sqrnorm(), e2.sqrnorm()});
     return OpenMesh::cross(e0, -e2).norm() <= 1e-12 * longest;
-  }
-};
-
-// Keeps per-corner (halfedge) attributes consistent and UV/normal seams in place. OpenMesh
-// redirects the halfedges that pointed to v0 onto v1 but leaves v0's corner values on them.
-// Before the collapse, each surviving face around v0 takes the value v1 has in the removed face
-// fl or fr of the same chart (the one whose v0 corner has the same value). A collapse where some
-// face around v0 belongs to neither chart (v0 on a seam the edge does not follow) is illegal, so
-// every corner keeps a value its vertex had in the input.
-template <class MeshT>
-class ModCornerSeamT : public OpenMesh::Decimater::ModBaseT<MeshT> {
- public:
-  DECIMATING_MODULE(ModCornerSeamT, MeshT, MeshdevCornerSeam);
-  explicit ModCornerSeamT(MeshT& mesh) : Base(mesh, true) {}
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    bool ok = true;
-    for (const OmChannelSlot* s : slots) ok = ok && visit(*s, ci, /*apply=*/false);
-    return ok ? float(Base::LEGAL_COLLAPSE) : float(Base::ILLEGAL_COLLAPSE);
-  }
-
-  void preprocess_collapse(const CollapseInfo& ci) override {
-    for (const OmChannelSlot* s : slots) visit(*s, ci, /*apply=*/true);
-  }
-
-  std::vector<const OmChannelSlot*> slots;
-
- private:
-  bool visit(const OmChannelSlot& s, const CollapseInfo& ci, bool apply) {
-    MeshT& m = Base::mesh();
-    switch (s.place) {
-      case OmChannelSlot::Place::kHalfedgeTexCoord:
-        return charts(
-            ci, apply, [&](auto h) { return m.texcoord2D(h); },
-            [&](auto h, const auto& x) { m.set_texcoord2D(h, x); });
-      case OmChannelSlot::Place::kHalfedgeNormal:
-        return charts(
-            ci, apply, [&](auto h) { return m.normal(h); },
-            [&](auto h, const auto& x) { m.set_normal(h, x); });
-      case OmChannelSlot::Place::kHalfedgeProperty:
-        return charts(
-            ci, apply, [&](auto h) { return m.property(s.hprop, h); },
-            [&](auto h, const auto& x) { m.property(s.hprop, h) = x; });
-      default:
-        return true;
-    }
-  }
-
-  // Checks (apply = false) or performs (apply = true) the reassignment; false = a third chart.
-  template <class Get, class Set>
-  bool charts(const CollapseInfo& ci, bool apply, Get get, Set set) {
-    MeshT& m = Base::mesh();
-    const bool left = ci.fl.is_valid(), right = ci.fr.is_valid();
-    // v0 and v1 corner values in the two faces that disappear.
-    decltype(get(ci.v0v1)) a0{}, a1{}, b0{}, b1{};
-    if (left) a0 = get(m.prev_halfedge_handle(ci.v0v1)), a1 = get(ci.v0v1);
-    if (right) b0 = get(ci.v1v0), b1 = get(m.prev_halfedge_handle(ci.v1v0));
-    for (auto h : m.vih_range(ci.v0)) {
-      auto f = m.face_handle(h);
-      if (!f.is_valid() || f == ci.fl || f == ci.fr) continue;
-      auto value = get(h);
-      if (left && value == a0) {
-        if (apply) set(h, a1);
-      } else if (right && value == b0) {
-        if (apply) set(h, b1);
-      } else {
-        return false;
-      }
-    }
-    return true;
   }
 };
 
@@ -253,25 +184,10 @@ std::vector<SimplifyResult> OpenMeshDecimater::simplify_sweep(
   auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   OpenMeshQuiet quiet;
 
-  // 1. Convert; a face OpenMesh refuses (non-manifold) makes the run fail.
-  OpenMeshConversion conv = to_openmesh(mesh);
-  if (conv.refused_faces > 0) {
-    for (SimplifyResult& r : results) {
-      r.status = SimplifyStatus::kFailed;
-      r.message = "OpenMesh refused " + std::to_string(conv.refused_faces) + " of " +
-                  std::to_string(mesh.num_faces()) +
-                  " faces (non-manifold edge or vertex, or a repeated vertex index)";
-      r.wall_seconds = seconds();
-    }
-    return results;
-  }
+  // 1. Convert (a face OpenMesh refuses makes the run fail) and request the status flags.
+  OpenMeshConversion conv;
+  if (!convert_for_decimation(mesh, conv, results)) return results;
   OmMesh& om = conv.mesh;
-
-  // 2. Status flags requested here (reference counted), so they outlive the decimater.
-  om.request_vertex_status();
-  om.request_halfedge_status();
-  om.request_edge_status();
-  om.request_face_status();
   bool vertex_normals = false, face_normals = false;
   std::vector<const OmChannelSlot*> corner_slots;
   for (const OmChannelSlot& s : conv.slots) {
