@@ -1,0 +1,780 @@
+// peer_compare: the same samples on mesh A, the same target mesh B, in one process and one run,
+// through
+//   (a) meshdev: compute_deviations() with geometry + normal + "temperature" (the whole
+//       per-sample unit of the metric: closest point, all equidistant ties, three measures);
+//   (b) Embree 3 rtcPointQuery, given its best (the research note's setup): samples in Morton
+//       order, RTC_BUILD_QUALITY_LOW (its fast build), shared float buffers, and a callback that
+//       computes the exact closest point on OUR arrays (never rtcGetGeometryBufferData; in double
+//       on our double positions, or in float with --embree-float), then
+//       interpolation of one 3-float vertex attribute and writes of distance, face, attribute;
+//   (c) CGAL 5.5 AABB tree (Epick) closest_point_and_primitive with its KD-tree accelerator, then
+//       barycentrics and the same interpolation.
+// For each: build time, query throughput on each thread count (best of --repeats), CPU share =
+// process CPU seconds / (wall x threads), and meshdev's speed ratio over each peer. Checks that the
+// three agree (mean distance, max per-sample difference). Prints a table and CSV rows.
+//
+// usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2] [--repeats 3]
+//                           [--engines meshdev,embree,cgal] [--embree-hint] [--embree-float]
+//                           [--csv FILE] [--label NAME]
+#include <embree3/rtcore.h>
+#include <malloc.h>
+#include <omp.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "metric/attribute_deviation.h"
+#include "metric/attributes.h"
+#include "metric/io/mesh_io.h"
+#include "metric/mesh.h"
+#include "metric/nearest_point.h"
+#include "metric/sampling.h"
+#include "metric/triangle_bvh.h"
+
+namespace {
+
+using meshdev::Vec3;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+double rss_mib() {  // current resident set
+  std::ifstream in("/proc/self/statm");
+  long pages = 0, resident = 0;
+  in >> pages >> resident;
+  return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / 1048576.0;
+}
+
+// Heap bytes in use (malloc arenas + mmapped chunks): unlike the RSS, not hidden by the reuse of
+// memory freed earlier in the process.
+double heap_mib() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / 1048576.0;
+}
+
+// Memory a build added: the larger of the heap growth and the RSS growth (Embree may map its own
+// pages; the RSS alone misses reused heap).
+struct MemProbe {
+  double heap0 = heap_mib(), rss0 = rss_mib();
+  double mib() const { return std::max(heap_mib() - heap0, rss_mib() - rss0); }
+};
+
+double peak_rss_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+std::string loadavg() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return a + " " + b + " " + c;
+}
+
+// One timed loop: wall seconds and the CPU share it got.
+struct Timing {
+  double wall = 0, share = 0;
+};
+
+template <class F>
+Timing time_best(int repeats, int threads, F&& run) {
+  Timing best{std::numeric_limits<double>::infinity(), 0};
+  for (int r = 0; r < repeats; ++r) {
+    const double c0 = cpu_seconds();
+    const auto t0 = Clock::now();
+    run();
+    const double wall = seconds_since(t0);
+    const double cpu = cpu_seconds() - c0;
+    if (wall < best.wall) best = {wall, cpu / (wall * threads)};
+  }
+  return best;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Samples: meshdev's area-uniform Monte Carlo sampler, optionally sorted along a Morton curve.
+
+std::uint64_t spread21(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
+void morton_sort(meshdev::SampleSet& set) {
+  meshdev::BoundingBox box;
+  for (const auto& s : set.samples) box.extend(s.point);
+  const Vec3 ext = box.max - box.min;
+  const double scale = 2097151.0 / std::max({ext.x, ext.y, ext.z, 1e-300});
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(set.samples.size());
+  for (std::size_t i = 0; i < set.samples.size(); ++i) {
+    const Vec3 q = (set.samples[i].point - box.min) * scale;
+    keys[i] = {spread21(static_cast<std::uint64_t>(q.x)) |
+                   spread21(static_cast<std::uint64_t>(q.y)) << 1 |
+                   spread21(static_cast<std::uint64_t>(q.z)) << 2,
+               static_cast<std::uint32_t>(i)};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<meshdev::Sample> sorted(set.samples.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) sorted[i] = set.samples[keys[i].second];
+  set.samples.swap(sorted);
+}
+
+// A smooth per-vertex scalar, the same function of position on both meshes (so the deviation is
+// small and real), scaled by A's box so it does not depend on B.
+void add_temperature(meshdev::TriMesh& m, const meshdev::BoundingBox& box) {
+  const double d = std::max(box.diagonal(), 1e-300);
+  auto& ch = m.add_channel("temperature", meshdev::AttributeKind::kScalar,
+                           meshdev::Storage::kPerVertex, 1);
+  for (std::size_t v = 0; v < m.num_vertices(); ++v) {
+    const Vec3 q = (m.positions[v] - box.min) * (1.0 / d);
+    ch.values[v] = 20 + 10 * std::sin(6.283 * q.x) * std::cos(6.283 * q.y) + 5 * q.z;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closest point on a triangle (Ericson, Real-Time Collision Detection §5.1.5), templated on the
+// scalar: float for Embree (its native precision), double for CGAL's barycentrics.
+
+template <class T>
+struct V3 {
+  T x, y, z;
+};
+template <class T>
+inline V3<T> sub(V3<T> a, V3<T> b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+inline T dot3(V3<T> a, V3<T> b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+// Returns the squared distance; bary receives the barycentrics of the closest point.
+template <class T>
+inline T closest_on_triangle(V3<T> p, V3<T> a, V3<T> b, V3<T> c, T bary[3]) {
+  const V3<T> ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+  const T d1 = dot3(ab, ap), d2 = dot3(ac, ap);
+  T u = 1, v = 0, w = 0;
+  if (d1 <= 0 && d2 <= 0) {
+    u = 1, v = 0, w = 0;
+  } else {
+    const V3<T> bp = sub(p, b);
+    const T d3 = dot3(ab, bp), d4 = dot3(ac, bp);
+    const V3<T> cp = sub(p, c);
+    const T d5 = dot3(ab, cp), d6 = dot3(ac, cp);
+    const T vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    if (d3 >= 0 && d4 <= d3) {
+      u = 0, v = 1, w = 0;
+    } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+      const T t = d1 / (d1 - d3);
+      u = 1 - t, v = t, w = 0;
+    } else if (d6 >= 0 && d5 <= d6) {
+      u = 0, v = 0, w = 1;
+    } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+      const T t = d2 / (d2 - d6);
+      u = 1 - t, v = 0, w = t;
+    } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+      const T t = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+      u = 0, v = 1 - t, w = t;
+    } else {
+      const T denom = 1 / (va + vb + vc);
+      v = vb * denom, w = vc * denom, u = 1 - v - w;
+    }
+  }
+  bary[0] = u, bary[1] = v, bary[2] = w;
+  const V3<T> q{u * a.x + v * b.x + w * c.x, u * a.y + v * b.y + w * c.y,
+                u * a.z + v * b.z + w * c.z};
+  const V3<T> e = sub(p, q);
+  return dot3(e, e);
+}
+
+// Per-sample outputs of a peer: the hot-loop unit's writes.
+struct PeerOut {
+  std::vector<float> distance;
+  std::vector<std::uint32_t> face;
+  std::vector<float> attribute;  // 3 per sample
+  void resize(std::size_t n) {
+    distance.assign(n, 0.f);
+    face.assign(n, 0);
+    attribute.assign(3 * n, 0.f);
+  }
+};
+
+// ---------------------------------------------------------------------------------------------
+// Embree 3.
+
+struct EmbreeArrays {  // our own arrays, shared with Embree (no copy inside Embree)
+  std::vector<float> vertices;      // 3 per vertex + 1 float of padding (Embree reads 16 bytes)
+  std::vector<std::uint32_t> tris;  // 3 per face
+};
+
+// T = double (default): the callback reads our double positions and the double sample, so
+// slivers cannot make it pick a wrong triangle (measured: no slower than float). T = float
+// (--embree-float): Embree's own precision throughout, our float copy of the positions.
+template <class T>
+struct EmbreeQuery {
+  const T* v;
+  const std::uint32_t* t;
+  V3<T> p;  // the sample, in T (Embree's RTCPointQuery holds it in float)
+  T best = std::numeric_limits<T>::infinity();  // squared distance
+  std::uint32_t face = 0;
+  T bary[3] = {1, 0, 0};
+};
+
+template <class T>
+inline V3<T> vertex(const T* v, std::uint32_t i) {
+  return {v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+}
+
+template <class T>
+inline T embree_eval(EmbreeQuery<T>& q, V3<T> p, std::uint32_t f) {
+  const std::uint32_t* t = q.t + 3 * static_cast<std::size_t>(f);
+  T bary[3];
+  const T d2 =
+      closest_on_triangle(p, vertex(q.v, t[0]), vertex(q.v, t[1]), vertex(q.v, t[2]), bary);
+  if (d2 < q.best) {
+    q.best = d2;
+    q.face = f;
+    std::copy(bary, bary + 3, q.bary);
+  }
+  return d2;
+}
+
+template <class T>
+bool embree_callback(RTCPointQueryFunctionArguments* args) {
+  auto& q = *static_cast<EmbreeQuery<T>*>(args->userPtr);
+  const T before = q.best;
+  embree_eval(q, q.p, args->primID);
+  if (q.best < before) {
+    // Never below the true distance in float (the radius only prunes).
+    args->query->radius = std::nextafter(static_cast<float>(std::sqrt(q.best)),
+                                         std::numeric_limits<float>::infinity());
+    return true;  // the radius shrank
+  }
+  return false;
+}
+
+struct EmbreeScene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  EmbreeScene(const EmbreeArrays& a, int threads) {
+    const std::string config = "threads=" + std::to_string(threads);
+    device = rtcNewDevice(config.c_str());
+    if (!device) throw std::runtime_error("rtcNewDevice failed");
+    scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_LOW);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_LOW);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, a.vertices.data(),
+                               0, 3 * sizeof(float), (a.vertices.size() - 1) / 3);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, a.tris.data(), 0,
+                               3 * sizeof(std::uint32_t), a.tris.size() / 3);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+  }
+  void commit() { rtcCommitScene(scene); }
+  ~EmbreeScene() {
+    rtcReleaseScene(scene);
+    rtcReleaseDevice(device);
+  }
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+};
+
+template <class T>
+void embree_queries(RTCScene scene, const T* vertices, const std::uint32_t* tris,
+                    const std::vector<float>& attr, const std::vector<float>& points,
+                    const std::vector<double>& points_d, bool hint, int threads, PeerOut& out) {
+  const auto n = static_cast<std::int64_t>(points.size() / 3);
+#pragma omp parallel num_threads(threads)
+  {
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    std::uint32_t previous = std::numeric_limits<std::uint32_t>::max();
+#pragma omp for schedule(dynamic, 1024)
+    for (std::int64_t i = 0; i < n; ++i) {
+      RTCPointQuery query;
+      query.x = points[3 * i], query.y = points[3 * i + 1], query.z = points[3 * i + 2];
+      query.time = 0;
+      query.radius = std::numeric_limits<float>::infinity();
+      EmbreeQuery<T> q{vertices, tris,
+                       {static_cast<T>(points_d[3 * i]), static_cast<T>(points_d[3 * i + 1]),
+                        static_cast<T>(points_d[3 * i + 2])}};
+      if (hint && previous != std::numeric_limits<std::uint32_t>::max()) {
+        // The coherence bound meshdev uses: the previous sample's triangle gives an upper bound.
+        embree_eval(q, q.p, previous);
+        query.radius = std::nextafter(static_cast<float>(std::sqrt(q.best)),
+                                      std::numeric_limits<float>::infinity());
+      }
+      rtcPointQuery(scene, &query, &context, embree_callback<T>, &q);
+      previous = q.face;
+      const std::uint32_t* t = tris + 3 * static_cast<std::size_t>(q.face);
+      out.distance[i] = static_cast<float>(std::sqrt(q.best));
+      out.face[i] = q.face;
+      for (int k = 0; k < 3; ++k)
+        out.attribute[3 * i + k] = static_cast<float>(q.bary[0] * attr[3 * t[0] + k] +
+                                                      q.bary[1] * attr[3 * t[1] + k] +
+                                                      q.bary[2] * attr[3 * t[2] + k]);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// CGAL AABB tree.
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using CgalTriangles = std::vector<K::Triangle_3>;
+using CgalPrimitive = CGAL::AABB_triangle_primitive<K, CgalTriangles::const_iterator>;
+using CgalTree = CGAL::AABB_tree<CGAL::AABB_traits<K, CgalPrimitive>>;
+
+void cgal_queries(const CgalTree& tree, const CgalTriangles& tris, const meshdev::TriMesh& b,
+                  const std::vector<double>& attr, const std::vector<double>& points, int threads,
+                  PeerOut& out) {
+  const auto n = static_cast<std::int64_t>(points.size() / 3);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const K::Point_3 p(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+    const auto hit = tree.closest_point_and_primitive(p);
+    const auto f = static_cast<std::uint32_t>(hit.second - tris.begin());
+    // Barycentrics of the closest point on face f (projection; it lies on the triangle).
+    const auto& t = b.faces[f];
+    const Vec3 a0 = b.positions[t[0]], e1 = b.positions[t[1]] - a0, e2 = b.positions[t[2]] - a0;
+    const Vec3 r = Vec3{hit.first.x(), hit.first.y(), hit.first.z()} - a0;
+    const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+    const double d20 = dot(r, e1), d21 = dot(r, e2);
+    const double den = d00 * d11 - d01 * d01;
+    double v = 0, w = 0;
+    if (den > 0) v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+    const double u = 1 - v - w;
+    out.distance[i] = static_cast<float>(std::sqrt(CGAL::squared_distance(p, hit.first)));
+    out.face[i] = f;
+    for (int k = 0; k < 3; ++k)
+      out.attribute[3 * i + k] = static_cast<float>(
+          u * attr[3 * t[0] + k] + v * attr[3 * t[1] + k] + w * attr[3 * t[2] + k]);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Reporting.
+
+struct Row {
+  Row(std::string e, int th, double b, Timing t, double q)
+      : engine(std::move(e)), threads(th), build(b), query(t), qps(q) {}
+  std::string engine;
+  int threads = 1;
+  double build = 0;  // seconds (the structure used by this row)
+  Timing query;
+  double qps = 0;
+  double mean = 0, max = 0;
+  double bytes_per_face = 0;  // structure: meshdev exact, peers from the RSS delta
+  double struct_mib = 0;
+  std::string note;
+};
+
+struct Options {
+  std::string a, b, label;
+  std::size_t samples = 1000000;
+  std::uint64_t seed = 1;
+  bool morton = true;
+  std::vector<int> threads{1, 2};
+  int repeats = 3;
+  std::vector<std::string> engines{"meshdev", "embree", "cgal"};
+  bool embree_hint = false;
+  bool embree_float = false;
+  std::string csv;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ','))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+[[noreturn]] void usage() {
+  std::fprintf(stderr,
+               "usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2]\n"
+               "                          [--repeats 3] [--engines meshdev,embree,cgal]\n"
+               "                          [--embree-hint] [--embree-float] [--csv FILE]\n"
+               "                          [--label NAME]\n");
+  std::exit(2);
+}
+
+Options parse(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> pos;
+  for (int i = 1; i < argc; ++i) {
+    const std::string s = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) usage();
+      return argv[++i];
+    };
+    if (s == "--seed")
+      o.seed = std::stoull(next());
+    else if (s == "--order") {
+      const std::string v = next();
+      if (v != "morton" && v != "native") usage();
+      o.morton = v == "morton";
+    } else if (s == "--threads") {
+      o.threads.clear();
+      for (const auto& t : split(next())) o.threads.push_back(std::stoi(t));
+    } else if (s == "--repeats")
+      o.repeats = std::max(1, std::stoi(next()));
+    else if (s == "--engines")
+      o.engines = split(next());
+    else if (s == "--embree-hint")
+      o.embree_hint = true;
+    else if (s == "--embree-float")
+      o.embree_float = true;
+    else if (s == "--csv")
+      o.csv = next();
+    else if (s == "--label")
+      o.label = next();
+    else if (!s.empty() && s[0] == '-')
+      usage();
+    else
+      pos.push_back(s);
+  }
+  if (pos.size() != 3) usage();
+  o.a = pos[0], o.b = pos[1], o.samples = std::stoull(pos[2]);
+  return o;
+}
+
+bool wants(const Options& o, const std::string& engine) {
+  return std::find(o.engines.begin(), o.engines.end(), engine) != o.engines.end();
+}
+
+std::string basename(const std::string& p) {
+  const auto s = p.find_last_of('/');
+  return s == std::string::npos ? p : p.substr(s + 1);
+}
+
+template <class T>
+std::pair<double, double> mean_max(const std::vector<T>& d) {
+  double sum = 0, mx = 0;
+  for (T x : d) sum += static_cast<double>(x), mx = std::max(mx, static_cast<double>(x));
+  return {d.empty() ? 0 : sum / static_cast<double>(d.size()), mx};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parse(argc, argv);
+  const std::string load_start = loadavg();
+
+  // Meshes, the extra attribute, the samples.
+  meshdev::TriMesh a = meshdev::read_mesh(opt.a);
+  meshdev::TriMesh b = meshdev::read_mesh(opt.b);
+  const meshdev::BoundingBox box_a = meshdev::bounding_box(a);
+  std::string temperature = "file";
+  auto has_temp = [](const meshdev::TriMesh& m) {
+    const auto* c = m.channel("temperature");
+    return c && c->dim == 1 && c->storage == meshdev::Storage::kPerVertex;
+  };
+  if (!has_temp(a) || !has_temp(b)) {
+    add_temperature(a, box_a);
+    add_temperature(b, box_a);
+    temperature = "generated";
+  }
+  meshdev::SamplingOptions so;
+  so.vertices = so.edges = false;
+  so.faces = meshdev::FaceSampling::kMonteCarlo;
+  so.target_count = opt.samples;
+  so.seed = opt.seed;
+  auto t0 = Clock::now();
+  meshdev::SampleSet set = meshdev::sample_surface(a, so, box_a.diagonal());
+  const double t_sample = seconds_since(t0);
+  t0 = Clock::now();
+  if (opt.morton) morton_sort(set);
+  const double t_sort = seconds_since(t0);
+  const std::size_t n = set.samples.size();
+
+  std::printf("peer_compare: A = %s (%zu faces), B = %s (%zu faces)\n", opt.a.c_str(),
+              a.num_faces(), opt.b.c_str(), b.num_faces());
+  std::printf("  %zu samples on A (Monte Carlo, seed %llu, %s order; sampling %.3f s, sort %.3f "
+              "s), temperature channel: %s\n",
+              n, static_cast<unsigned long long>(opt.seed), opt.morton ? "Morton" : "native",
+              t_sample, t_sort, temperature.c_str());
+  std::printf("  load average at start: %s (2-core machine: > 0.5 means the numbers are "
+              "loaded)\n",
+              load_start.c_str());
+  std::fflush(stdout);
+
+  std::vector<Row> rows;
+  std::vector<double> d_meshdev;
+  std::vector<float> d_embree, d_cgal;
+  std::vector<float> attr_f;   // B's normals, 3 floats per vertex (the peers' attribute)
+  std::vector<double> attr_d;  // same in double (CGAL)
+  double meshdev_ties = 0;
+
+  // The attribute plan also gives B's normals (computed the same way for the peers' attribute).
+  meshdev::AttributeOptions ao;
+  ao.attributes = {"geometry", "normal", "temperature"};
+  t0 = Clock::now();
+  const meshdev::AttributePlan plan = meshdev::plan_attributes(a, b, ao, "A", "B");
+  const double t_plan = seconds_since(t0);
+  {
+    const meshdev::AttributeChannel* nb = plan.b.channel("normal");
+    attr_d.assign(3 * b.num_vertices(), 0.0);
+    if (nb && nb->storage == meshdev::Storage::kPerVertex && nb->dim == 3)
+      attr_d.assign(nb->values.begin(), nb->values.end());
+    else
+      for (std::size_t v = 0; v < b.num_vertices(); ++v) attr_d[3 * v] = 1;
+    attr_f.assign(attr_d.begin(), attr_d.end());
+  }
+
+  // (a) meshdev.
+  if (wants(opt, "meshdev")) {
+    const MemProbe probe;
+    t0 = Clock::now();
+    auto index = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
+    const double build = seconds_since(t0);
+    const double struct_mib = probe.mib();
+    const auto* bvh = dynamic_cast<const meshdev::TriangleBvh*>(index.get());
+    const double bpf = bvh ? static_cast<double>(bvh->memory_bytes()) /
+                                 static_cast<double>(b.num_faces())
+                           : 0;
+    for (int th : opt.threads) {
+      meshdev::SampleDeviations dev;
+      const Timing t = time_best(opt.repeats, th, [&] {
+        dev = meshdev::compute_deviations(set, plan.a, plan.b, *index, plan.measures, {th});
+      });
+      Row r{"meshdev", th, build, t, static_cast<double>(n) / t.wall};
+      std::tie(r.mean, r.max) = mean_max(dev.values[0]);
+      r.bytes_per_face = bpf;
+      r.struct_mib = bvh ? static_cast<double>(bvh->memory_bytes()) / 1048576.0 : struct_mib;
+      r.note = "index " + index->name() + ", plan " + std::to_string(t_plan).substr(0, 5) + " s";
+      rows.push_back(r);
+      if (d_meshdev.empty()) {
+        d_meshdev = dev.values[0];
+        double ties = 0;
+        for (auto c : dev.tie_count) ties += c;
+        meshdev_ties = ties / static_cast<double>(n);
+      }
+    }
+  }
+
+  // Query points for the peers, in the same order.
+  std::vector<float> pf(3 * n);
+  std::vector<double> pd(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& p = set.samples[i].point;
+    for (int k = 0; k < 3; ++k) {
+      pd[3 * i + k] = p[k];
+      pf[3 * i + k] = static_cast<float>(p[k]);
+    }
+  }
+
+  // (b) Embree 3.
+  if (wants(opt, "embree")) {
+    EmbreeArrays arrays;
+    arrays.vertices.resize(3 * b.num_vertices() + 1, 0.f);
+    for (std::size_t v = 0; v < b.num_vertices(); ++v)
+      for (int k = 0; k < 3; ++k) arrays.vertices[3 * v + k] = static_cast<float>(b.positions[v][k]);
+    arrays.tris.resize(3 * b.num_faces());
+    for (std::size_t f = 0; f < b.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) arrays.tris[3 * f + k] = b.faces[f][k];
+    PeerOut out;
+    out.resize(n);
+    double embree_mib = -1;
+    std::vector<bool> variants{false};
+    if (opt.embree_hint) variants.push_back(true);
+    for (int th : opt.threads) {
+      // Best-of build with the device's pool limited to `th` threads; keep the last scene.
+      double build = std::numeric_limits<double>::infinity();
+      std::unique_ptr<EmbreeScene> scene;
+      for (int r = 0; r < opt.repeats; ++r) {
+        scene.reset();
+        scene = std::make_unique<EmbreeScene>(arrays, th);  // device, thread pool, geometry
+        const MemProbe probe;                               // so the growth is the BVH only
+        t0 = Clock::now();
+        scene->commit();
+        build = std::min(build, seconds_since(t0));
+        if (embree_mib < 0) embree_mib = probe.mib();  // the first build, on fresh memory
+      }
+      for (bool hint : variants) {
+        const Timing t = time_best(opt.repeats, th, [&] {
+          static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is read as a double array");
+          if (!opt.embree_float)
+            embree_queries(scene->scene, &b.positions[0].x, arrays.tris.data(), attr_f, pf, pd,
+                           hint, th, out);
+          else
+            embree_queries(scene->scene, arrays.vertices.data(), arrays.tris.data(), attr_f, pf,
+                           pd, hint, th, out);
+        });
+        Row r{hint ? "embree+hint" : "embree", th, build, t, static_cast<double>(n) / t.wall};
+        std::tie(r.mean, r.max) = mean_max(out.distance);
+        r.struct_mib = embree_mib;
+        r.bytes_per_face = embree_mib * 1048576.0 / static_cast<double>(b.num_faces());
+        r.note = std::string(opt.morton ? "Morton" : "native order") + ", LOW build" +
+                 (hint ? ", previous-face bound" : "") +
+                 (opt.embree_float ? ", float callback" : ", double callback");
+        rows.push_back(r);
+        if (d_embree.empty()) d_embree = out.distance;
+      }
+    }
+  }
+
+  // (c) CGAL AABB tree (Epick) with the KD-tree accelerator.
+  if (wants(opt, "cgal")) {
+    CgalTriangles tris;
+    tris.reserve(b.num_faces());
+    auto point = [&](std::uint32_t v) {
+      const Vec3& p = b.positions[v];
+      return K::Point_3(p.x, p.y, p.z);
+    };
+    for (const auto& f : b.faces) tris.emplace_back(point(f[0]), point(f[1]), point(f[2]));
+    const MemProbe probe;
+    t0 = Clock::now();
+    CgalTree tree(tris.begin(), tris.end());
+    tree.build();
+    const double t_tree = seconds_since(t0);
+    t0 = Clock::now();
+    tree.accelerate_distance_queries();
+    tree.closest_point(K::Point_3(pd[0], pd[1], pd[2]));  // makes sure the KD-tree is built
+    const double t_kd = seconds_since(t0);
+    const double struct_mib = probe.mib();
+    PeerOut out;
+    out.resize(n);
+    for (int th : opt.threads) {
+      const Timing t = time_best(opt.repeats, th,
+                                 [&] { cgal_queries(tree, tris, b, attr_d, pd, th, out); });
+      Row r{"cgal", th, t_tree + t_kd, t, static_cast<double>(n) / t.wall};
+      std::tie(r.mean, r.max) = mean_max(out.distance);
+      r.struct_mib = struct_mib;
+      r.bytes_per_face = struct_mib * 1048576.0 / static_cast<double>(b.num_faces());
+      char note[96];
+      std::snprintf(note, sizeof note, "tree %.3f s + KD-tree %.3f s", t_tree, t_kd);
+      r.note = note;
+      rows.push_back(r);
+      if (d_cgal.empty()) d_cgal = out.distance;
+    }
+  }
+
+  // Agreement.
+  auto max_abs = [&](const auto& x, const auto& y) {
+    double m = 0;
+    if (x.size() != n || y.size() != n) return std::numeric_limits<double>::quiet_NaN();
+    for (std::size_t i = 0; i < n; ++i)
+      m = std::max(m, std::abs(static_cast<double>(x[i]) - static_cast<double>(y[i])));
+    return m;
+  };
+  double mean_lo = std::numeric_limits<double>::infinity(), mean_hi = -mean_lo;
+  for (const Row& r : rows) mean_lo = std::min(mean_lo, r.mean), mean_hi = std::max(mean_hi, r.mean);
+  const double mean_diff = rows.empty() ? 0 : mean_hi - mean_lo;
+  const double diag_b = meshdev::bounding_box(b).diagonal();
+
+  // meshdev's ratio over each peer at the same thread count.
+  auto meshdev_qps = [&](int th) {
+    for (const Row& r : rows)
+      if (r.engine == "meshdev" && r.threads == th) return r.qps;
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  // Samples per CPU-second actually consumed: on a loaded machine (CPU share < 1) this is the
+  // fairer basis for a ratio; on a quiet one it equals qps / threads.
+  auto per_cpu = [&](const Row& r) { return r.qps / (r.query.share * r.threads); };
+  auto meshdev_per_cpu = [&](int th) {
+    for (const Row& r : rows)
+      if (r.engine == "meshdev" && r.threads == th) return per_cpu(r);
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+
+  const std::string load_end = loadavg();
+  const double peak = peak_rss_mib();
+  std::printf("\n%-12s %3s %8s %8s %8s %5s %9s %9s %9s %11s %7s %7s  %s\n", "engine", "thr",
+              "build s", "query s", "M q/s", "cpu", "M q/CPUs", "meshdev/x", "(per CPU)",
+              "mean dist", "B/face", "MiB", "notes");
+  for (const Row& r : rows) {
+    std::printf("%-12s %3d %8.4f %8.4f %8.3f %5.2f %9.3f %9.2f %9.2f %11.6g %7.1f %7.1f  %s\n",
+                r.engine.c_str(), r.threads, r.build, r.query.wall, r.qps / 1e6, r.query.share,
+                per_cpu(r) / 1e6, meshdev_qps(r.threads) / r.qps,
+                meshdev_per_cpu(r.threads) / per_cpu(r), r.mean, r.bytes_per_face, r.struct_mib,
+                r.note.c_str());
+  }
+  std::printf("(M q/s: wall-clock throughput; cpu: CPU share = CPU s / (wall x threads); M q/CPUs: "
+              "samples per CPU-second; meshdev/x: meshdev's throughput over this row's, wall and "
+              "per CPU-second; B/face: structure bytes per face of B, meshdev exact "
+              "(TriangleBvh::memory_bytes), peers from the heap or RSS growth of their build)\n");
+  auto speedup = [&](const std::string& e) {
+    double q1 = 0, q2 = 0;
+    for (const Row& r : rows)
+      if (r.engine == e && r.threads == 1) q1 = r.qps;
+      else if (r.engine == e && r.threads == 2) q2 = r.qps;
+    return q1 > 0 && q2 > 0 ? q2 / q1 : std::numeric_limits<double>::quiet_NaN();
+  };
+  std::printf("\n2-thread speed-up: meshdev %.2fx, embree %.2fx, cgal %.2fx\n",
+              speedup("meshdev"), speedup("embree"), speedup("cgal"));
+  std::printf("agreement: mean distance spread %.3g (%.3g of B's diagonal); max per-sample |d|"
+              " difference meshdev-embree %.3g, meshdev-cgal %.3g, embree-cgal %.3g\n",
+              mean_diff, diag_b > 0 ? mean_diff / diag_b : 0.0, max_abs(d_meshdev, d_embree),
+              max_abs(d_meshdev, d_cgal), max_abs(d_embree, d_cgal));
+  if (!d_meshdev.empty()) std::printf("meshdev: %.3f equidistant faces per sample\n", meshdev_ties);
+  std::printf("peak RSS of the process %.1f MiB; load average at end: %s\n", peak,
+              load_end.c_str());
+
+  // CSV.
+  std::ostringstream csv;
+  const std::string label = opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
+  for (const Row& r : rows) {
+    char line[1024];
+    std::snprintf(line, sizeof line,
+                  "%s,%s,%s,%zu,%zu,%zu,%s,%s,%d,%.6f,%.6f,%.1f,%.3f,%.1f,%d,%.9g,%.9g,%.2f,%.2f,"
+                  "%.1f,%.3f,%.3f,%.3g,%s,%s\n",
+                  label.c_str(), basename(opt.a).c_str(), basename(opt.b).c_str(), a.num_faces(),
+                  b.num_faces(), n, opt.morton ? "morton" : "native", r.engine.c_str(), r.threads,
+                  r.build, r.query.wall, r.qps, r.query.share, per_cpu(r), opt.repeats, r.mean,
+                  r.max, r.bytes_per_face, r.struct_mib, peak, meshdev_qps(r.threads) / r.qps,
+                  meshdev_per_cpu(r.threads) / per_cpu(r), mean_diff,
+                  load_start.substr(0, load_start.find(' ')).c_str(),
+                  load_end.substr(0, load_end.find(' ')).c_str());
+    csv << line;
+  }
+  const char* header =
+      "label,a,b,a_faces,b_faces,samples,order,engine,threads,build_s,query_s,qps,cpu_share,"
+      "qps_per_cpu_s,repeats,mean_distance,max_distance,struct_bytes_per_face,struct_mib,"
+      "peak_rss_mib,meshdev_over_engine,meshdev_over_engine_per_cpu,mean_spread,load_start,"
+      "load_end\n";
+  std::printf("\nCSV\n%s%s", header, csv.str().c_str());
+  if (!opt.csv.empty()) {
+    std::ifstream probe(opt.csv);
+    const bool fresh = !probe.good() || probe.peek() == std::ifstream::traits_type::eof();
+    probe.close();
+    std::ofstream f(opt.csv, std::ios::app);
+    if (fresh) f << header;
+    f << csv.str();
+  }
+  return 0;
+}

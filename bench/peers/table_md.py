@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""Markdown tables for docs/performance.md from results/performance/peers.csv (and meshlab.csv).
+usage: table_md.py peers.csv [meshlab.csv]"""
+import csv
+import sys
+from collections import OrderedDict
+
+
+def peers(path):
+    rows = list(csv.DictReader(open(path)))
+    print("| pair (A→B) | faces A→B | samples | engine | thr | build s | M q/s | CPU share "
+          "| M q/CPU-s | meshdev ÷ this (wall) | (per CPU-s) | B/face |")
+    print("|---|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for r in rows:
+        series, name = r["label"].split("|", 1) if "|" in r["label"] else ("", r["label"])
+        if series != "pairs":
+            continue
+        print(f"| {name} | {int(r['a_faces']):,}→{int(r['b_faces']):,} | {int(r['samples']):,} "
+              f"| {r['engine']} | {r['threads']} | {float(r['build_s']):.3f} "
+              f"| {float(r['qps']) / 1e6:.2f} | {float(r['cpu_share']):.2f} "
+              f"| {float(r['qps_per_cpu_s']) / 1e6:.2f} | {float(r['meshdev_over_engine']):.2f} "
+              f"| {float(r['meshdev_over_engine_per_cpu']):.2f} "
+              f"| {float(r['struct_bytes_per_face']):.0f} |")
+    print()
+    for series, key, title in (("faces", "b_faces", "faces of B"), ("samples", "samples", "samples")):
+        table = OrderedDict()
+        engines = []
+        for r in rows:
+            if not r["label"].startswith(series + "|"):
+                continue
+            col = f"{r['engine']} {r['threads']}t"
+            if col not in engines:
+                engines.append(col)
+            table.setdefault(int(r[key]), {})[col] = (float(r["qps"]) / 1e6,
+                                                     float(r["qps_per_cpu_s"]) / 1e6)
+        if not table:
+            continue
+        print(f"| {title} | " + " | ".join(engines) + " |")
+        print("|---:|" + "---:|" * len(engines))
+        for x in sorted(table):
+            cells = [f"{table[x][e][0]:.2f} ({table[x][e][1]:.2f})" if e in table[x] else "–"
+                     for e in engines]
+            print(f"| {x:,} | " + " | ".join(cells) + " |")
+        print("\nM q/s wall (M q per CPU-second in brackets).\n")
+
+
+def meshlab(path):
+    rows = list(csv.DictReader(open(path)))
+    print("| A | B | faces | samples/dir | meshdev s | MeshLab xvfb-run s | MeshLab warm s "
+          "| ratio (xvfb) | ratio (warm) | mean A→B meshdev / MeshLab | load |")
+    print("|---|---|---|---:|---:|---:|---:|---:|---:|---|---|")
+    for r in rows:
+        print(f"| {r['a']} | {r['b']} | {int(r['a_faces']):,}/{int(r['b_faces']):,} "
+              f"| {int(r['samples_per_direction']):,} | {float(r['meshdev_s']):.2f} "
+              f"| {float(r['meshlab_xvfb_s']):.2f} | {float(r['meshlab_warm_s']):.2f} "
+              f"| {r['ratio_xvfb']} | {r['ratio_warm']} "
+              f"| {float(r['meshdev_mean_ab']):.6g} / {r['meshlab_mean_ab']} "
+              f"| {r['load_start']}–{r['load_end']} |")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) not in (2, 3):
+        sys.exit(__doc__)
+    peers(sys.argv[1])
+    if len(sys.argv) == 3:
+        meshlab(sys.argv[2])
