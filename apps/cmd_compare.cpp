@@ -50,20 +50,10 @@ std::vector<std::string> split(const std::string& text) {
 
 CompareOptions to_options(const CompareArgs& args) {
   CompareOptions o;
-  o.sampling.vertices = o.sampling.edges = false;
-  o.sampling.faces = FaceSampling::kNone;
-  for (const std::string& kind : split(args.sampling)) {
-    if (kind == "vertices")
-      o.sampling.vertices = true;
-    else if (kind == "edges")
-      o.sampling.edges = true;
-    else if (kind == "faces")
-      o.sampling.faces = FaceSampling::kScanConversion;
-    else if (kind == "montecarlo")
-      o.sampling.faces = FaceSampling::kMonteCarlo;
-    else
-      throw CLI::ValidationError(
-          "--sampling", "unknown kind '" + kind + "' (use vertices, edges, faces, montecarlo)");
+  try {
+    set_sample_kinds(o.sampling, args.sampling);
+  } catch (const InvalidInput& e) {
+    throw CLI::ValidationError("--sampling", e.what());
   }
   if (!args.step.empty()) {
     const bool percent = args.step.back() == '%';

@@ -220,21 +220,7 @@ std::string config_to_json(const SweepConfig& c) {
 
 CompareOptions compare_options(const SweepConfig& c) {
   CompareOptions o;
-  o.sampling.vertices = o.sampling.edges = false;
-  o.sampling.faces = FaceSampling::kNone;
-  for (const std::string& kind : split_list(c.sampling)) {
-    if (kind == "vertices")
-      o.sampling.vertices = true;
-    else if (kind == "edges")
-      o.sampling.edges = true;
-    else if (kind == "faces")
-      o.sampling.faces = FaceSampling::kScanConversion;
-    else if (kind == "montecarlo")
-      o.sampling.faces = FaceSampling::kMonteCarlo;
-    else
-      throw InvalidInput("sampling: unknown kind '" + kind +
-                         "' (use vertices, edges, faces, montecarlo)");
-  }
+  set_sample_kinds(o.sampling, c.sampling);
   if (!o.sampling.vertices && !o.sampling.edges && o.sampling.faces == FaceSampling::kNone)
     throw InvalidInput("sampling: nothing to sample");
   o.sampling.step_fraction = c.step_fraction;

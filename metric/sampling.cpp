@@ -298,4 +298,24 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   return set;
 }
 
+void set_sample_kinds(SamplingOptions& o, const std::string& list) {
+  o.vertices = o.edges = false;
+  o.faces = FaceSampling::kNone;
+  std::stringstream in(list);
+  std::string kind;
+  while (std::getline(in, kind, ',')) {
+    if (kind == "vertices")
+      o.vertices = true;
+    else if (kind == "edges")
+      o.edges = true;
+    else if (kind == "faces")
+      o.faces = FaceSampling::kScanConversion;
+    else if (kind == "montecarlo")
+      o.faces = FaceSampling::kMonteCarlo;
+    else if (!kind.empty())
+      throw InvalidInput("unknown sample kind '" + kind +
+                         "' (use vertices, edges, faces, montecarlo)");
+  }
+}
+
 }  // namespace meshdev

@@ -66,6 +66,11 @@ struct SampleSet {
 // O(F + V + number of samples) time and memory; the Δ search for a target count is O(F log).
 SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& options, double diagonal);
 
+// Sets vertices/edges/faces of `options` from a comma-separated list of "vertices", "edges",
+// "faces" (scan conversion) and "montecarlo" (the CLI's and the sweep config's syntax). Throws
+// InvalidInput for an unknown kind. O(length of the list).
+void set_sample_kinds(SamplingOptions& options, const std::string& list);
+
 // Number of scan-conversion points on one triangle with step Δ (Eq. 6). O(|AB|/Δ).
 std::size_t scan_conversion_count(const Vec3& a, const Vec3& b, const Vec3& c, double step);
 

@@ -575,11 +575,7 @@ std::vector<SimplifyResult> OpenMeshAppearance::simplify_sweep(
     const TriMesh& mesh, const std::vector<SimplifyRequest>& requests) {
   detail::check_input(mesh, name());
   const std::size_t n = requests.size();
-  std::vector<SimplifyResult> results(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    results[i].input_faces = mesh.num_faces();
-    results[i].target_faces = resolve_target_faces(requests[i], mesh.num_faces());
-  }
+  std::vector<SimplifyResult> results = detail::results_for(mesh, requests);
   if (n == 0) return results;
   const auto start = Clock::now();
   auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };

@@ -79,6 +79,16 @@ SimplifyResult UnavailableSimplifier::simplify(const TriMesh& mesh,
 
 namespace detail {
 
+std::vector<SimplifyResult> results_for(const TriMesh& mesh,
+                                        const std::vector<SimplifyRequest>& requests) {
+  std::vector<SimplifyResult> results(requests.size());
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    results[i].input_faces = mesh.num_faces();
+    results[i].target_faces = resolve_target_faces(requests[i], mesh.num_faces());
+  }
+  return results;
+}
+
 void check_input(const TriMesh& mesh, const std::string& backend) {
   if (mesh.num_faces() == 0) throw InvalidInput(backend + ": the input mesh has no faces");
   validate(mesh, backend + " input");

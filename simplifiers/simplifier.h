@@ -130,6 +130,10 @@ namespace detail {
 
 // Throws InvalidInput unless the mesh has at least one face and is valid (metric validate()).
 void check_input(const TriMesh& mesh, const std::string& backend);
+// One result per request with input_faces and the resolved target_faces filled in. Throws
+// InvalidInput for a bad request (see resolve_target_faces).
+std::vector<SimplifyResult> results_for(const TriMesh& mesh,
+                                        const std::vector<SimplifyRequest>& requests);
 // kOk or kTargetNotReached from the counts, with a message for the latter.
 void set_status_from_counts(SimplifyResult& result);
 // Parses option values; throw InvalidInput naming the key on failure.
