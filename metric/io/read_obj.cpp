@@ -184,7 +184,8 @@ std::uint32_t ObjParser::resolve(std::string_view token, std::size_t count,
   if (i == 0) fail(std::string(what) + " index 0 (OBJ indices start at 1)");
   if (i < 0) {
     // Relative: -1 is the last one defined so far.
-    if (static_cast<std::uint64_t>(-i) > count)
+    // Negated in unsigned arithmetic: -INT64_MIN overflows (found by fuzz_read_mesh).
+    if (std::uint64_t{0} - static_cast<std::uint64_t>(i) > count)
       fail(std::string(what) + " index " + std::to_string(i) + " refers before the first (" +
            std::to_string(count) + " defined so far)");
     return static_cast<std::uint32_t>(static_cast<std::int64_t>(count) + i);
@@ -311,6 +312,10 @@ void ObjParser::resolve_texture(TriMesh& mesh) const {
   std::string mtl_path = io_detail::resolve_relative(folder, mtllib_);
   std::string mtl;
   try {
+    // Only a regular file: "mtllib /dev/zero" (or a FIFO) would otherwise read without end.
+    std::error_code ec;
+    if (std::filesystem::exists(mtl_path, ec) && !std::filesystem::is_regular_file(mtl_path, ec))
+      throw IoError(mtl_path + ": not a regular file");
     mtl = io_detail::read_file_bytes(mtl_path);
   } catch (const IoError& e) {
     std::cerr << "meshdev: warning: " << path_ << ": mtllib " << quoted(mtllib_)

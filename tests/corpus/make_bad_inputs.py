@@ -282,6 +282,149 @@ ok("valid_ascii_two_solids.stl", "solid a\n" + FACET + "endsolid a\nsolid b\n" +
    + "endsolid b\n", "vertices      4", "ascii STL with two solids, shared corners merged")
 ok("valid_\u00fcmlaut.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "triangles     1", "non-ASCII name, valid")
 
+# ---------------------------------------------------------------- more cases (issue 7: >= 20 per family)
+# OBJ
+bad("obj_crlf_index_zero.obj", (TRI_OBJ + "f 0 1 2\n").replace("\n", "\r\n"), "index 0",
+    "CRLF line endings do not hide an index 0")
+bad("obj_bom_bad_index.obj", b"\xef\xbb\xbf" + (TRI_OBJ + "f 1 2 9\n").encode(), "out of range",
+    "UTF-8 BOM, then an out-of-range index")
+bad("obj_truncated_vertex.obj", TRI_OBJ + "f 1 2 3\nv 1 2", "needs 3 coordinates", "file cut inside a v line")
+bad("obj_index_int_overflow.obj", TRI_OBJ + "f 1 2 4294967299\n", "out of range",
+    "index 2^32+3 (wraps to 3 in 32 bits)")
+bad("obj_negative_huge.obj", TRI_OBJ + "f 1 2 -9223372036854775808\n", "refers before the first",
+    "most negative 64-bit index")
+bad("obj_one_corner.obj", TRI_OBJ + "f 1\n", "at least 3", "face with 1 corner")
+bad("obj_no_corners.obj", TRI_OBJ + "f\n", "at least 3", "face with no corners")
+bad("obj_minus_inf.obj", "v 0 0 0\nv 1 0 0\nv 0 1 -Infinity\nf 1 2 3\n", "not a finite", "-Infinity")
+bad("obj_hex_float.obj", "v 0x1p3 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", "is not a number", "hex float token")
+bad("obj_vn_out_of_range.obj", TRI_OBJ + "vn 0 0 1\nf 1//1 2//2 3//1\n", "out of range", "vn index past the last vn")
+bad("obj_nan_normal.obj", TRI_OBJ + "vn nan 0 1\nf 1//1 2//1 3//1\n", "not a finite", "nan normal")
+bad("obj_binary_stl_named_obj.obj", b"\x00" * 80 + struct.pack("<I", 1) + struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0),
+    "unknown OBJ keyword", "binary STL bytes named .obj (exact STL size)")
+bad("obj_very_long_face.obj", TRI_OBJ + "f " + "1 2 " * 100000 + "0\n", "index 0",
+    "200 001-corner face ending in index 0 (800 kB line)")
+bad("obj_\u00e9\u00e8_\u4e2d\u6587.obj", TRI_OBJ + "f 1 2 3 4\n", "out of range", "non-ASCII file name, OBJ")
+ok("valid_long_comment.obj", "# " + "x" * 2000000 + "\n" + TRI_OBJ + "f 1 2 3\n", "triangles     1",
+   "2 MB comment line")
+ok("valid_mtllib_dev_zero.obj", "mtllib /dev/zero\n" + TRI_OBJ + "f 1 2 3\n", "triangles     1",
+   "mtllib naming /dev/zero: skipped with a warning (was: read without end, out of memory, exit 70)")
+ok("valid_mtllib_directory.obj", "mtllib /\n" + TRI_OBJ + "f 1 2 3\n", "triangles     1",
+   "mtllib naming a directory: skipped with a warning")
+ok("valid_bom_crlf.obj", b"\xef\xbb\xbf" + (TRI_OBJ + "f 1 2 3\n").replace("\n", "\r\n").encode(),
+   "triangles     1", "BOM and CRLF OBJ")
+
+# PLY ascii
+bad("plya_empty.ply", b"", "empty file", "0-byte PLY")
+bad("plya_magic_only.ply", "ply\n", "no 'end_header'", "just the magic line")
+bad("plya_truncated_body.ply", ply_ascii()[:-8], "declares 1 records", "body cut in the face line")
+bad("plya_crlf_bad_index.ply", ply_ascii(body="0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n").replace("\n", "\r\n"),
+    "out of range", "CRLF PLY with an index out of range")
+bad("plya_bom_nan.ply", b"\xef\xbb\xbf" + ply_ascii(body="0 0 0\n1 0 0\n0 1 inf\n3 0 1 2\n").encode(),
+    "not a finite", "BOM PLY with inf")
+bad("plya_list_count_negative.ply", ply_ascii(body="0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n"), "out of range",
+    "list count -3 for a uchar count")
+bad("plya_list_count_short.ply", ply_ascii(body="0 0 0\n1 0 0\n0 1 0\n5 0 1 2\n"), "missing value",
+    "list count 5 with 3 items")
+bad("plya_list_count_huge.ply", ply_ascii(face_prop="property list uint int vertex_indices\n",
+    body="0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n"), "missing value", "list count 4e9 with 3 items")
+bad("plya_index_float.ply", ply_ascii(body="0 0 0\n1 0 0\n0 1 0\n3 0 1 2.5\n"), "not an integer",
+    "face index 2.5")
+bad("plya_index_int_overflow.ply", ply_ascii(body="0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967298\n"),
+    "out of range", "index 2^32+2 for an int")
+bad("plya_list_of_lists.ply", ply_ascii(face_prop="property list uchar list vertex_indices\n"),
+    "unknown PLY type", "list item type 'list'")
+bad("plya_very_long_line.ply", ply_ascii(body="0 0 0\n1 0 0\n0 1 " + "0" * 1000000 + "1x\n3 0 1 2\n"),
+    "is not a number", "1 MB token")
+bad("plya_huge_face_count.ply", ply_ascii(face_count=99999999999999999999), "bad count",
+    "face count beyond 64 bits")
+bad("plya_\u00fc\u00f1\u00ee\u00e7\u00f8d\u00e9.ply", ply_ascii(body="0 0 0\n1 0 0\n0 1 0\n2 0 1\n"), "at least 3",
+    "non-ASCII file name, PLY ascii")
+ok("valid_long_comment.ply", ply_ascii(extra_header="comment " + "y" * 30000 + "\n"), "triangles     1",
+   "30 kB header comment")
+
+# PLY binary
+bad("plyb_empty_body.ply", ply_bin(), "declares 3 records", "binary header, no data")
+bad("plyb_count_negative.ply", ply_bin(vertex_count=-1) + V3 + F1, "bad count", "negative vertex count")
+bad("plyb_count_abc.ply", ply_bin().replace(b"vertex 3", b"vertex 3x") + V3 + F1, "bad count",
+    "vertex count '3x'")
+bad("plyb_uint_list_count_huge.ply", ply_bin(fprop="list uint int vertex_indices") + V3 + struct.pack("<I3i", 0xFFFFFFFF, 0, 1, 2),
+    "runs past the end", "uint list count 0xFFFFFFFF")
+bad("plyb_ushort_list_count.ply", ply_bin(fprop="list ushort int vertex_indices") + V3 + struct.pack("<H3i", 60000, 0, 1, 2),
+    "runs past the end", "ushort list count 60000 with 3 items")
+bad("plyb_uint_index_huge.ply", ply_bin(fprop="list uchar uint vertex_indices") + V3 + struct.pack("<B3I", 3, 0, 1, 0xFFFFFFFF),
+    "out of range", "uint index 0xFFFFFFFF")
+bad("plyb_double_list_count.ply", ply_bin(fprop="list double int vertex_indices") + V3 + struct.pack("<d3i", 3, 0, 1, 2),
+    "not an integer type", "list count type double")
+bad("plyb_float_items.ply", ply_bin(fprop="list uchar float vertex_indices") + V3 + struct.pack("<B3f", 3, 0, 1, 2),
+    "floating-point item type", "vertex_indices with float items, binary")
+bad("plyb_be_nan.ply", ply_bin(fmt="binary_big_endian") + struct.pack(">9f", 0, 0, 0, 1, 0, 0, 0, float("nan"), 0)
+    + struct.pack(">B3i", 3, 0, 1, 2), "not finite", "big-endian NaN")
+bad("plyb_le_read_as_be.ply", ply_bin(fmt="binary_big_endian") + V3 + F1, "out of range",
+    "little-endian data under a big-endian header")
+bad("plyb_one_corner.ply", ply_bin() + V3 + struct.pack("<Bi", 1, 0) + b"\x00" * 8, "at least 3",
+    "face with 1 corner")
+bad("plyb_zero_corners.ply", ply_bin() + V3 + struct.pack("<B", 0), "at least 3", "face with 0 corners")
+bad("plyb_\u65e5\u672c.ply", ply_bin() + V3 + struct.pack("<B3i", 3, 0, 1, 5), "out of range",
+    "non-ASCII file name, PLY binary")
+ok("valid_crlf_header_binary.ply", ply_bin().replace(b"\n", b"\r\n") + V3 + F1, "triangles     1",
+   "binary PLY whose header has CRLF line endings")
+
+# OFF
+bad("off_truncated_face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1", "only 23 bytes follow", "file cut inside the face")
+bad("off_crlf_index.off", "OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 5\r\n", "out of range",
+    "CRLF OFF with an index out of range")
+bad("off_bom_nan.off", b"\xef\xbb\xbfOFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n", "not a finite", "BOM OFF with nan")
+bad("off_index_float.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2.0\n", "not an integer", "index 2.0")
+bad("off_valence_negative.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n", "at least 3", "valence -3")
+bad("off_index_overflow.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 4294967296\n", "out of range",
+    "index 2^32 (wraps to 0 in 32 bits)")
+bad("off_two_corners.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1 # pad pad\n", "at least 3", "face with 2 corners")
+bad("off_zero_vertices.off", "OFF\n0 0 0\n", "vertices", "no vertices")
+bad("off_\u00e5\u00df.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -2\n", "out of range", "non-ASCII file name, OFF")
+ok("valid_long_comment.off", "OFF\n# " + "z" * 1500000 + "\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "triangles     1",
+   "1.5 MB comment line")
+ok("valid_crlf_bom.off", b"\xef\xbb\xbf" + b"OFF\r\n3 1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n",
+   "triangles     1", "BOM and CRLF OFF")
+
+# STL ascii
+bad("stla_solid_only.stl", "solid", "before 'endsolid'", "the word 'solid' and nothing else")
+bad("stla_overflow.stl", "solid t\n" + facet("0 0 0", "1 0 1e999", "0 1 0") + "endsolid t\n", "not a finite",
+    "1e999 overflows double")
+bad("stla_extra_value.stl", "solid t\n" + facet("0 0 0", "1 0 0 7", "0 1 0") + "endsolid t\n", "extra",
+    "vertex with 4 values")
+bad("stla_missing_outer_loop.stl", "solid t\nfacet normal 0 0 1\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n",
+    "expected 'outer'", "facet without 'outer loop'")
+bad("stla_binary_body.stl", b"solid t\n" + struct.pack("<12fH", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0) * 3,
+    "data is binary", "'solid' line followed by binary triangles (wrong size for binary)")
+bad("stla_crlf_nan.stl", ("solid t\n" + facet("0 0 0", "1 0 0", "0 NaN 0") + "endsolid t\n").replace("\n", "\r\n"),
+    "not a finite", "CRLF STL with NaN")
+bad("stla_truncated_after_endloop.stl", "solid t\n" + FACET.replace("endfacet\n", ""), "truncated",
+    "file ends before endfacet")
+bad("stla_\u00f8\u00e6.stl", "solid t\n" + facet("0 0 0", "1 0 x", "0 1 0") + "endsolid t\n", "is not a number",
+    "non-ASCII file name, STL ascii")
+ok("valid_crlf.stl", ("solid t\n" + FACET + "endsolid t\n").replace("\n", "\r\n"), "triangles     1", "CRLF ascii STL")
+ok("valid_long_solid_name.stl", "solid " + "n" * 1000000 + "\n" + FACET + "endsolid\n", "triangles     1",
+   "1 MB solid name")
+
+# STL binary
+bad("stlb_84_bytes_count_1.stl", stl_bin([], count=1), "header says 1 triangles", "header only, count 1")
+bad("stlb_count_larger.stl", stl_bin([T1, T2], count=3), "header says 3 triangles", "count 3 with 2 triangles")
+bad("stlb_count_smaller.stl", stl_bin([T1, T2], count=1), "header says 1 triangles", "count 1 with 2 triangles")
+bad("stlb_count_zero_with_data.stl", stl_bin([T1], count=0), "header says 0 triangles", "count 0 with 1 triangle")
+bad("stlb_truncated_mid_triangle.stl", stl_bin([T1, T2])[:84 + 50 + 25], "header says 2 triangles",
+    "cut in the middle of the 2nd triangle")
+bad("stlb_ffffffff_no_data.stl", stl_bin([], count=0xFFFFFFFF), "4294967295 triangles", "count 0xFFFFFFFF, 84 bytes")
+bad("stlb_signaling_nan.stl", stl_bin([T1])[:84 + 12 + 4] + struct.pack("<I", 0x7F800001) + stl_bin([T1])[84 + 20:],
+    "non-finite", "signalling NaN bit pattern")
+bad("stlb_inf_z.stl", stl_bin([(0, 0, float("inf"), 1, 0, 0, 0, 1, 0)]), "non-finite", "+inf z")
+bad("stlb_solid_header_short.stl", b"solid x".ljust(80, b" ") + struct.pack("<I", 1) + b"\x00" * 30,
+    "data is binary", "binary-looking 'solid' file, 114 bytes")
+bad("stlb_\u00e4\u00f6\u00fc.stl", stl_bin([T1], count=7), "header says 7 triangles", "non-ASCII file name, STL binary")
+ok("valid_nan_normal.stl", b"binary".ljust(80, b"\0") + struct.pack("<I", 1)
+   + struct.pack("<12fH", float("nan"), 0, 1, *T1, 0), "triangles     1", "NaN facet normal (not used)")
+ok("valid_attribute_bytes.stl", b"vendor colour".ljust(80, b"\0") + struct.pack("<I", 1)
+   + struct.pack("<12fH", 0, 0, 1, *T1, 0x7C1F), "triangles     1", "non-zero attribute byte count, exact size")
+
 
 def main():
     if len(sys.argv) != 2:

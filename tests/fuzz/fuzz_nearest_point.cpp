@@ -1,0 +1,78 @@
+// libFuzzer target: bytes -> a small valid-but-weird mesh (degenerate, duplicate, non-manifold
+// triangles, extreme coordinates) and query points -> the BVH, the grid and the brute-force
+// oracle. They must return bit-identical distances and tie sets, and nothing may be NaN.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <vector>
+
+#include "metric/nearest_point.h"
+#include "tests/fuzz/fuzz_input.h"
+
+namespace {
+
+using meshdev::SurfaceHit;
+
+void require(bool condition, const char* what) {
+  if (!condition) {
+    std::fprintf(stderr, "fuzz_nearest_point: %s\n", what);
+    std::abort();
+  }
+}
+
+void check_hits(const std::vector<SurfaceHit>& hits, double distance) {
+  require(std::isfinite(distance) && distance >= 0, "distance not finite or negative");
+  require(!hits.empty(), "no nearest face");
+  for (const SurfaceHit& h : hits) {
+    require(std::isfinite(h.sq_distance) && h.sq_distance >= 0, "squared distance not finite");
+    require(std::isfinite(h.point.x) && std::isfinite(h.point.y) && std::isfinite(h.point.z),
+            "nearest point not finite");
+    for (double b : h.bary) require(std::isfinite(b), "barycentric not finite");
+  }
+}
+
+bool same(const std::vector<SurfaceHit>& x, const std::vector<SurfaceHit>& y) {
+  if (x.size() != y.size()) return false;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    if (x[i].face != y[i].face || x[i].sq_distance != y[i].sq_distance || x[i].bary != y[i].bary ||
+        x[i].feature != y[i].feature)
+      return false;
+  return true;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  meshdev::fuzz::ByteReader in(data, size);
+  const meshdev::TriMesh mesh = meshdev::fuzz::small_mesh(in);
+  const auto bvh = meshdev::make_nearest_point_index(mesh, meshdev::IndexKind::kBvh);
+  const auto grid = meshdev::make_nearest_point_index(mesh, meshdev::IndexKind::kGrid);
+  const auto brute = meshdev::make_nearest_point_index(mesh, meshdev::IndexKind::kBruteForce);
+  std::vector<SurfaceHit> hb, hg, hf;
+  // Queries: every vertex (ties at shared corners), then points from the remaining bytes, some
+  // with a source-triangle hint (the exact-zero rule) or a start face.
+  std::vector<meshdev::Vec3> queries = mesh.positions;
+  while (!in.empty() && queries.size() < 64) queries.push_back(meshdev::fuzz::point(in));
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    meshdev::QueryHint hint;
+    const meshdev::Triangle& t = mesh.faces[q % mesh.num_faces()];
+    const meshdev::Vec3 corners[3] = {mesh.positions[t[0]], mesh.positions[t[1]],
+                                      mesh.positions[t[2]]};
+    if (q % 3 == 1) {
+      hint.source = corners;
+      hint.source_bary = {1, 0, 0};
+      queries[q] = corners[0];
+    }
+    if (q % 3 == 2) hint.start_face = static_cast<std::uint32_t>(q % mesh.num_faces());
+    const double db = bvh->find(queries[q], hint, hb);
+    const double dg = grid->find(queries[q], hint, hg);
+    const double df = brute->find(queries[q], hint, hf);
+    check_hits(hf, df);
+    require(db == df && dg == df, "BVH, grid and brute force disagree on the distance");
+    require(same(hb, hf), "BVH and brute force disagree on the ties");
+    require(same(hg, hf), "grid and brute force disagree on the ties");
+  }
+  return 0;
+}
