@@ -9,10 +9,9 @@ namespace meshdev {
 namespace {
 
 constexpr int kAxisBits = 21;
-#ifndef MESHDEV_GRID_FACTOR
-#define MESHDEV_GRID_FACTOR 1.0
-#endif
-constexpr double kCellFactor = MESHDEV_GRID_FACTOR;
+// Cell size = kCellFactor x sqrt(area / F), about one triangle width (coarsened while the
+// reference count exceeds 16 F).
+constexpr double kCellFactor = 1.0;
 constexpr std::int64_t kMaxDim = (std::int64_t{1} << kAxisBits) - 1;
 
 std::uint64_t pack(std::int64_t i, std::int64_t j, std::int64_t k) {

@@ -2,9 +2,11 @@
 // A hashed uniform grid over a triangle mesh in front of the BVH: the paper's (§4) and Metro's
 // structure for many spatially coherent queries very near the surface, made exact.
 //
-// Build: cell size h = 2 sqrt(area / F) (about two triangle widths), every triangle listed in the
-//        cells its bounding box overlaps, occupied cells in an open-addressing hash table.
-//        O(F) expected time; memory about 16-24 bytes per face plus the BVH's.
+// Build: cell size h = sqrt(area / F) (about one triangle width, doubled while the references
+//        exceed 16 F); every triangle listed in the cells its bounding box overlaps; occupied
+//        cells in an open-addressing hash table. O(F) expected time. Memory: the BVH's plus
+//        the table and references, 77-227 bytes per face in all on the meshes measured
+//        (docs/performance.md §3), which is why the BVH alone stays the default.
 // Query: test the triangles listed in p's cell. If the tie limit around the best one found fits
 //        inside that cell, every triangle that can be a tie overlaps the cell and was tested, so
 //        the answer is exact; otherwise (far queries, cell borders, empty cells) the BVH answers,
