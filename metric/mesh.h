@@ -5,6 +5,7 @@
 // boundary. Units are those of the file (absolute).
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -46,7 +47,10 @@ struct AttributeChannel {
 struct TriMesh {
   std::vector<Vec3> positions;
   std::vector<Triangle> faces;
-  std::vector<AttributeChannel> channels;
+  // A deque, not a vector: the reference add_channel() returns stays valid when more channels
+  // are added (a vector's reallocation made `auto& c = add_channel(..); add_channel(..); c...`
+  // a use-after-free, found by the ASan test run).
+  std::deque<AttributeChannel> channels;
 
   // Provenance, filled by the readers.
   std::string source_file;          // the path it was read from ("" if built in code)

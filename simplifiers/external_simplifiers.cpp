@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -245,7 +246,7 @@ SimplifyResult ExternalSimplifier::simplify(const TriMesh& mesh, const SimplifyR
   if (out.num_faces() == 0) return fail("output has no faces");
 
   // 4. Channels: kept if they came back as they went in; everything else dropped.
-  std::vector<AttributeChannel> channels;
+  std::deque<AttributeChannel> channels;
   for (const AttributeChannel& c : mesh.channels) {
     const AttributeChannel* o = out.channel(c.name);
     if (o != nullptr && o->kind == c.kind && o->storage == c.storage && o->dim == c.dim) {
