@@ -1,6 +1,7 @@
 #pragma once
-// The error policy (docs/error-policy.md): bad input at a public entry point throws one of these
-// typed exceptions; internal invariants use assert; run-time outcomes come back as values.
+// The error policy (docs/robustness.md, "Error policy"): bad input at a public entry point
+// throws one of these typed exceptions; internal invariants use assert; run-time outcomes come
+// back as values.
 #include <stdexcept>
 #include <string>
 
