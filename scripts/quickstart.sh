@@ -19,19 +19,8 @@ packages=(
   libcgal-demo libstb-dev python3 python3-matplotlib python3-vtk9 meshlab xvfb xauth
 )
 
-setup() {
-  local missing=()
-  for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  if ((${#missing[@]})); then
-    echo "== installing: ${missing[*]}"
-    local sudo=""
-    [ "$(id -u)" -eq 0 ] || sudo="sudo"
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-  fi
-}
+source "$here/scripts/install_packages.sh"
+setup() { install_packages "${packages[@]}"; }
 
 build() {
   echo "== building in $build"

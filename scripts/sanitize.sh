@@ -23,19 +23,8 @@ packages=(
   libopenmesh-dev libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev libmeshoptimizer-dev
 )
 
-setup() {
-  local missing=()
-  for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-  done
-  if ((${#missing[@]})); then
-    echo "== installing: ${missing[*]}"
-    local sudo=""
-    [ "$(id -u)" -eq 0 ] || sudo="sudo"
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-  fi
-}
+source "$here/scripts/install_packages.sh"
+setup() { install_packages "${packages[@]}"; }
 
 step() {  # step NAME COMMAND...: runs one step, counts it
   local name=$1 start=$SECONDS
