@@ -43,7 +43,7 @@ bool match_corners(const Vec3* source, const Vec3& a, const Vec3& b, const Vec3&
 
 }  // namespace
 
-FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties)
+FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres)
     : mesh(&m), tie_relative(ties.relative) {
   const double diag = bounding_box(m).diagonal();
   tie_absolute = ties.absolute_fraction * diag;
@@ -55,6 +55,7 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties)
     magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
   const double reach = 1e-9 * diag + 1e-14 * magnitude;
   exact_check_sq = reach * reach;
+  if (!with_spheres) return;
   spheres.resize(m.faces.size());
   for (std::size_t f = 0; f < m.faces.size(); ++f) {
     const Triangle& t = m.faces[f];
@@ -101,6 +102,7 @@ void keep_ties(std::vector<SurfaceHit>& ties, double limit_sq) {
   for (const SurfaceHit& h : ties)
     if (h.sq_distance <= limit_sq) ties[kept++] = h;
   ties.resize(kept);
+  if (kept < 2) return;
   std::sort(ties.begin(), ties.end(),
             [](const SurfaceHit& x, const SurfaceHit& y) { return x.face < y.face; });
 }

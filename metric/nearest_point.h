@@ -83,14 +83,14 @@ struct FaceEvaluator {
 
   // A bounding sphere per face (float centre, radius rounded up so it stays conservative): a
   // face whose sphere is farther than the current tie limit cannot be a candidate, so it is
-  // skipped without the exact test. 16 bytes per face.
+  // skipped without the exact test. 16 bytes per face; empty unless asked for.
   struct Sphere {
     float center[3];
     float radius;
   };
   std::vector<Sphere> spheres;
 
-  FaceEvaluator(const TriMesh& m, const TieOptions& ties);
+  FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
   // Squared tie limit for a minimum squared distance.
   double limit_sq(double best_sq) const;

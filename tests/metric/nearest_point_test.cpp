@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "metric/errors.h"
@@ -89,6 +90,95 @@ TEST(NearestPoint, GridEqualsBruteForceNearAndFarFromTheSurface) {
       }
     }
   }
+}
+
+// The BVH culls in single precision (triangle_bvh.h): a box or triangle is skipped only when a
+// conservative float lower bound exceeds the tie limit. Meshes built to stress that bound:
+// near-coplanar fans (many faces within float rounding of the minimum), slivers of rising
+// aspect ratio, triangles 1e-9 of the mesh size, coordinates offset by 1e8 and scaled by 1e-6
+// or 1e6, and queries on, a hair off, and 1e13 mesh sizes away (where culling is turned off).
+// Every answer must be the oracle's, bit for bit, ties included.
+TriMesh stress_mesh(std::uint64_t seed, double scale, double offset) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  TriMesh m;
+  auto add = [&](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const auto v = static_cast<std::uint32_t>(m.positions.size());
+    for (const Vec3& x : {a, b, c}) m.positions.push_back(offset * Vec3{1, 1, 1} + scale * x);
+    m.faces.push_back({v, v + 1, v + 2});
+  };
+  // A fan of 24 faces around (0.5, 0.5, 0) whose rims wobble by 1e-7: nearly coplanar.
+  for (int k = 0; k < 24; ++k) {
+    const double t0 = 2 * 3.14159265358979 * k / 24, t1 = 2 * 3.14159265358979 * (k + 1) / 24;
+    add({0.5, 0.5, 0.0}, {0.5 + 0.3 * std::cos(t0), 0.5 + 0.3 * std::sin(t0), 1e-7 * u(rng)},
+        {0.5 + 0.3 * std::cos(t1), 0.5 + 0.3 * std::sin(t1), 1e-7 * u(rng)});
+  }
+  // Slivers: width / length from 1e-2 down to 1e-8, at random places and directions.
+  for (int k = 0; k < 60; ++k) {
+    const Vec3 a{u(rng), u(rng), u(rng)}, d{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
+    const Vec3 w{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
+    const double width = std::pow(10.0, -2.0 - 6.0 * u(rng));
+    add(a, a + d, a + 0.5 * d + width * w);
+  }
+  // Tiny triangles (1e-9 of the mesh) and ordinary random ones.
+  for (int k = 0; k < 60; ++k) {
+    const Vec3 a{u(rng), u(rng), u(rng)};
+    const double size = k % 2 == 0 ? 1e-9 : 0.2;
+    add(a, a + size * Vec3{u(rng), u(rng), u(rng)}, a + size * Vec3{u(rng), u(rng), u(rng)});
+  }
+  return m;
+}
+
+TEST(NearestPoint, BvhFloatCullingNeverChangesTheAnswer) {
+  int queries = 0;
+  for (std::uint64_t seed : {21u, 22u}) {
+    for (double scale : {1e-6, 1.0, 1e6}) {
+      for (double offset : {0.0, 1e8}) {
+        const TriMesh m = stress_mesh(seed, scale, offset);
+        TriangleBvh bvh(m);
+        NearestPointBrute brute(m);
+        std::mt19937_64 rng(seed + 1000);
+        std::uniform_real_distribution<double> u(0.0, 1.0), s(-1.0, 1.0);
+        std::vector<SurfaceHit> tb, tf;
+        std::uint32_t previous = kNoFace;
+        for (int q = 0; q < 600; ++q) {
+          Vec3 p;
+          const Triangle& t = m.faces[rng() % m.faces.size()];
+          double a = u(rng), b = u(rng);
+          if (a + b > 1) a = 1 - a, b = 1 - b;
+          const Vec3 on = m.positions[t[0]] + a * (m.positions[t[1]] - m.positions[t[0]]) +
+                          b * (m.positions[t[2]] - m.positions[t[0]]);
+          const Vec3 dir{s(rng), s(rng), s(rng)};
+          switch (q % 5) {
+            case 0: p = on; break;                                        // on a face
+            case 1: p = on + 1e-9 * scale * dir; break;                   // a hair off it
+            case 2: p = m.positions[t[q % 3]] + 1e-12 * scale * dir; break;  // at a corner
+            case 3: p = offset * Vec3{1, 1, 1} + scale * (1.5 * dir); break;  // anywhere near
+            default: p = offset * Vec3{1, 1, 1} + 1e13 * scale * dir; break;  // culling off
+          }
+          QueryHint hint;
+          hint.start_face = previous;
+          const double db = bvh.find(p, hint, tb);
+          ASSERT_EQ(db, brute.find(p, {}, tf))
+              << "seed " << seed << " scale " << scale << " offset " << offset << " query " << q;
+          expect_same(tb, tf);
+          previous = tb.front().face;
+          ++queries;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(queries, 2 * 3 * 2 * 600);
+}
+
+// Structure size (issue 3 asks for at most 64 bytes per face) on a closed surface.
+TEST(NearestPoint, BvhStaysBelow64BytesPerFace) {
+  const TriMesh sphere = test::icosphere(5);  // 20,480 faces
+  const TriangleBvh bvh(sphere);
+  const double per_face =
+      static_cast<double>(bvh.memory_bytes()) / static_cast<double>(sphere.faces.size());
+  EXPECT_GT(per_face, 40.0);  // at least the float corners (36 B) and the face id (4 B)
+  EXPECT_LE(per_face, 64.0);
 }
 
 TEST(NearestPoint, QueryAtASharedVertexReturnsEveryIncidentFaceAsATie) {
