@@ -52,7 +52,8 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   const std::size_t n = samples.samples.size();
   SampleDeviations out;
   out.values.assign(measures.size(), std::vector<double>(n, 0.0));
-  out.nearest.resize(n);
+  if (options.keep_nearest) out.nearest.resize(n);
+  out.nearest_feature.resize(n);
   out.tie_count.resize(n);
   const std::vector<ChannelGroup> groups = group_measures(reference, target, measures);
   const TriMesh& ref = *reference.mesh;
@@ -101,7 +102,8 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
         const double distance = index.find(s.point, hint, ties);
         assert(!ties.empty());
         previous = ties.front().face;
-        out.nearest[i] = ties.front();
+        if (options.keep_nearest) out.nearest[i] = ties.front();
+        out.nearest_feature[i] = ties.front().feature;
         out.tie_count[i] = static_cast<std::uint32_t>(ties.size());
         out.values[0][i] = distance;
 

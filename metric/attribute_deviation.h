@@ -15,11 +15,16 @@ namespace meshdev {
 
 struct DeviationOptions {
   int threads = 0;  // OpenMP threads; 0 = OpenMP's default (OMP_NUM_THREADS or all cores)
+  // Fill SampleDeviations::nearest (72 bytes per sample). compare() asks for it only when
+  // per-sample output is kept; the statistics need only nearest_feature.
+  bool keep_nearest = true;
 };
 
 struct SampleDeviations {
   std::vector<std::vector<double>> values;  // values[measure][sample], measure 0 = geometry
   std::vector<SurfaceHit> nearest;          // per sample: the tie with the lowest face index
+                                            // (only with DeviationOptions::keep_nearest)
+  std::vector<Feature> nearest_feature;     // per sample: where that point lies on its face
   std::vector<std::uint32_t> tie_count;     // per sample: number of equidistant target faces
   // Only when Cohen's texture deviation is measured (see metric/texture_deviation.h):
   std::vector<std::uint8_t> cohen_case;  // per sample: a CohenCase

@@ -41,9 +41,26 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   r.index = index->name();
 
   t0 = Clock::now();
-  SampleDeviations dev =
-      compute_deviations(samples, from, to, *index, measures, DeviationOptions{o.threads});
+  DeviationOptions deviation_options;
+  deviation_options.threads = o.threads;
+  deviation_options.keep_nearest = o.keep_samples;
+  SampleDeviations dev = compute_deviations(samples, from, to, *index, measures, deviation_options);
   r.seconds_query = seconds_since(t0);
+  // The nearest point of one sample: kept, or found again (the same query gives the same answer).
+  std::vector<SurfaceHit> ties;
+  auto nearest_of = [&](std::size_t i) {
+    if (!dev.nearest.empty()) return dev.nearest[i];
+    const Sample& s = samples.samples[i];
+    Vec3 corners[3];
+    QueryHint hint;
+    if (s.face != kNoFace) {
+      for (int c = 0; c < 3; ++c) corners[c] = from.mesh->positions[from.mesh->faces[s.face][c]];
+      hint.source = corners;
+      hint.source_bary = s.bary;
+    }
+    index->find(s.point, hint, ties);
+    return ties.front();
+  };
 
   std::vector<double> weights(samples.samples.size());
   for (std::size_t i = 0; i < weights.size(); ++i) weights[i] = samples.samples[i].weight;
@@ -51,12 +68,12 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
     r.stats.push_back(compute_statistics(dev.values[m], weights, o.histogram_bins));
     const std::size_t i = r.stats.back().argmax;
     const Sample& s = samples.samples[i];
-    const SurfaceHit& h = dev.nearest[i];
+    const SurfaceHit h = nearest_of(i);
     r.max_location.push_back(
         {i, s.point, s.kind, s.face, h.point, h.face, h.feature, dev.values[m][i]});
   }
-  for (std::size_t i = 0; i < dev.nearest.size(); ++i) {
-    ++r.nearest_feature[static_cast<int>(dev.nearest[i].feature)];
+  for (std::size_t i = 0; i < dev.nearest_feature.size(); ++i) {
+    ++r.nearest_feature[static_cast<int>(dev.nearest_feature[i])];
     r.samples_with_ties += dev.tie_count[i] > 1;
   }
   r.cohen_multiple = dev.cohen_multiple;
