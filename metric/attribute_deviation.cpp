@@ -18,6 +18,7 @@ struct ChannelGroup {
   const AttributeChannel* reference = nullptr;
   const AttributeChannel* target = nullptr;
   std::vector<std::size_t> measures;
+  std::vector<MeasureKind> kinds;  // measures[k]'s kind
 };
 
 std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const PreparedMesh& target,
@@ -32,10 +33,11 @@ std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const Pr
     auto it = std::find_if(groups.begin(), groups.end(),
                            [&](const ChannelGroup& g) { return g.reference == ca; });
     if (it == groups.end()) {
-      groups.push_back({ca, cb, {}});
+      groups.push_back({ca, cb, {}, {}});
       it = groups.end() - 1;
     }
     it->measures.push_back(m);
+    it->kinds.push_back(measures[m].kind);
   }
   return groups;
 }
@@ -109,6 +111,13 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
 
         for (const ChannelGroup& g : groups) {
           interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
+          if (ties.size() == 1) {  // the common case: no minimum to take
+            interpolate(*g.target, tgt, ties[0].face, ties[0].bary, kNoFace, fb);
+            for (std::size_t k = 0; k < g.measures.size(); ++k)
+              out.values[g.measures[k]][i] =
+                  attribute_distance(g.kinds[k], fa, fb, g.reference->dim);
+            continue;
+          }
           best.assign(g.measures.size(), std::numeric_limits<double>::infinity());
           for (const SurfaceHit& h : ties) {
             interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);

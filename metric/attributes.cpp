@@ -182,26 +182,6 @@ AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const Attribut
   return plan;
 }
 
-void interpolate(const AttributeChannel& c, const TriMesh& mesh, std::uint32_t face,
-                 const std::array<double, 3>& bary, std::uint32_t vertex, double* out) {
-  const int dim = c.dim;
-  if (face == kNoFace) {  // a point-cloud vertex: only per-vertex channels exist
-    const double* v = c.element(vertex);
-    for (int k = 0; k < dim; ++k) out[k] = v[k];
-    return;
-  }
-  if (c.storage == Storage::kPerFace) {
-    const double* v = c.element(face);
-    for (int k = 0; k < dim; ++k) out[k] = v[k];
-    return;
-  }
-  const double* v[3];
-  for (int i = 0; i < 3; ++i)
-    v[i] =
-        c.storage == Storage::kPerVertex ? c.element(mesh.faces[face][i]) : c.element(3 * face + i);
-  for (int k = 0; k < dim; ++k) out[k] = bary[0] * v[0][k] + bary[1] * v[1][k] + bary[2] * v[2][k];
-}
-
 double attribute_distance(MeasureKind kind, const double* x, const double* y, int dim) {
   switch (kind) {
     case MeasureKind::kNormalEuclidean:

@@ -87,8 +87,26 @@ AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const Attribut
 // Value of `channel` at barycentrics `bary` of `face` (kNoFace: at vertex `vertex`, for point
 // clouds), written to out[0..dim). Barycentric interpolation in corner order 0, 1, 2; per-corner
 // channels use the corners of that face, per-face channels are constant on it. O(dim).
-void interpolate(const AttributeChannel& channel, const TriMesh& mesh, std::uint32_t face,
-                 const std::array<double, 3>& bary, std::uint32_t vertex, double* out);
+// Inline: it runs once per sample and tie in the metric's inner loop.
+inline void interpolate(const AttributeChannel& channel, const TriMesh& mesh, std::uint32_t face,
+                        const std::array<double, 3>& bary, std::uint32_t vertex, double* out) {
+  const int dim = channel.dim;
+  if (face == kNoFace) {  // a point-cloud vertex: only per-vertex channels exist
+    const double* v = channel.element(vertex);
+    for (int k = 0; k < dim; ++k) out[k] = v[k];
+    return;
+  }
+  if (channel.storage == Storage::kPerFace) {
+    const double* v = channel.element(face);
+    for (int k = 0; k < dim; ++k) out[k] = v[k];
+    return;
+  }
+  const double* v[3];
+  for (int i = 0; i < 3; ++i)
+    v[i] = channel.storage == Storage::kPerVertex ? channel.element(mesh.faces[face][i])
+                                                  : channel.element(3 * face + i);
+  for (int k = 0; k < dim; ++k) out[k] = bary[0] * v[0][k] + bary[1] * v[1][k] + bary[2] * v[2][k];
+}
 
 // Deviation between two channel values under `kind` (not kGeometry). O(dim).
 double attribute_distance(MeasureKind kind, const double* x, const double* y, int dim);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -31,6 +32,9 @@ enum class AttributeKind : std::uint8_t {
   kTexCoord,  // dim 2, (u, v)
   kScalar,    // any other named property of any dim (quality, confidence, temperature, ...)
 };
+
+// "No face" (a point-cloud vertex, an empty slot, no answer yet).
+inline constexpr std::uint32_t kNoFace = std::numeric_limits<std::uint32_t>::max();
 
 struct AttributeChannel {
   std::string name;  // "normal", "color", "texcoord", or the file's own property name

@@ -14,8 +14,6 @@
 
 namespace meshdev {
 
-inline constexpr std::uint32_t kNoFace = std::numeric_limits<std::uint32_t>::max();
-
 // One candidate nearest point: a face of the target, the closest point on it and where it lies.
 struct SurfaceHit {
   std::uint32_t face = kNoFace;

@@ -68,8 +68,10 @@ void BM_Deviations(benchmark::State& state) {
   AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
   TriangleBvh bvh(b);
   for (auto _ : state) {
-    SampleDeviations d = compute_deviations(s, plan.a, plan.b, bvh, plan.measures,
-                                            DeviationOptions{static_cast<int>(state.range(0))});
+    DeviationOptions options;  // what `meshdev compare` asks for
+    options.threads = static_cast<int>(state.range(0));
+    options.keep_nearest = false;
+    SampleDeviations d = compute_deviations(s, plan.a, plan.b, bvh, plan.measures, options);
     benchmark::DoNotOptimize(d.values[0].data());
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * s.samples.size()));

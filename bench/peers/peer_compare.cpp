@@ -570,7 +570,10 @@ int main(int argc, char** argv) {
     for (int th : opt.threads) {
       meshdev::SampleDeviations dev;
       const Timing t = time_best(opt.repeats, th, [&] {
-        dev = meshdev::compute_deviations(set, plan.a, plan.b, *index, plan.measures, {th});
+        meshdev::DeviationOptions options;  // what `meshdev compare` asks for
+        options.threads = th;
+        options.keep_nearest = false;
+        dev = meshdev::compute_deviations(set, plan.a, plan.b, *index, plan.measures, options);
       });
       Row r{"meshdev", th, build, t, static_cast<double>(n) / t.wall};
       std::tie(r.mean, r.max) = mean_max(dev.values[0]);
