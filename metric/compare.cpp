@@ -36,7 +36,7 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   r.samples = samples.samples.size();
 
   t0 = Clock::now();
-  std::unique_ptr<NearestPointIndex> index = make_nearest_point_index(*to.mesh, o.index, o.ties);
+  std::unique_ptr<NearestPointIndex> index = make_nearest_point_index(*to.mesh, o.index, o.ties, o.threads);
   r.seconds_index = seconds_since(t0);
   r.index = index->name();
 

@@ -12,12 +12,12 @@
 namespace meshdev {
 
 std::unique_ptr<NearestPointIndex> make_nearest_point_index(const TriMesh& target, IndexKind kind,
-                                                            const TieOptions& ties) {
+                                                            const TieOptions& ties, int threads) {
   if (target.faces.empty())
     throw InvalidInput("the target mesh has no faces: nearest points on a surface need triangles");
   if (kind == IndexKind::kBruteForce) return std::make_unique<NearestPointBrute>(target, ties);
-  if (kind == IndexKind::kBvh) return std::make_unique<TriangleBvh>(target, ties);
-  return std::make_unique<TriangleGrid>(target, ties);
+  if (kind == IndexKind::kBvh) return std::make_unique<TriangleBvh>(target, ties, threads);
+  return std::make_unique<TriangleGrid>(target, ties, threads);
 }
 
 namespace detail {

@@ -66,9 +66,11 @@ enum class IndexKind {
 };
 
 // Builds the index of the given kind over `target` (kept by reference: it must outlive the
-// index). Throws InvalidInput if the target has no faces.
+// index) with `threads` OpenMP threads (0 = OpenMP's default; the index is the same for any
+// count). Throws InvalidInput if the target has no faces.
 std::unique_ptr<NearestPointIndex> make_nearest_point_index(const TriMesh& target, IndexKind kind,
-                                                            const TieOptions& ties = {});
+                                                            const TieOptions& ties = {},
+                                                            int threads = 0);
 
 namespace detail {
 

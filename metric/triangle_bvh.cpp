@@ -1,10 +1,14 @@
 #include "metric/triangle_bvh.h"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <numeric>
 
 #include "metric/simd4.h"
@@ -16,7 +20,8 @@ using simd::F4;
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kLeafSize = 4;
-constexpr std::uint32_t kAlignBelow = 32;  // subtrees this small split at multiples of 4
+constexpr std::uint32_t kAlignBelow = 32;
+constexpr std::uint32_t kTaskBelow = 1u << 15;  // smaller subtrees are built by one thread  // subtrees this small split at multiples of 4
 // Below this depth the binary build splits by SAH; deeper (only for pathological inputs) it splits
 // the list in halves, so the depth stays below kMaxDepth + 32 and leaves keep <= 4 faces.
 constexpr int kMaxSahDepth = 60;
@@ -82,10 +87,20 @@ float round_up(double x) {
   return static_cast<double>(f) < x ? next_up(f) : f;
 }
 
+// Trivial (no initialisers): 2F of them are allocated up front and only those used are ever
+// written, so the unused part of the allocation is never touched.
 struct BinaryNode {
-  Box box;
-  std::uint32_t index = 0;  // inner: first of two consecutive children; leaf: first slot in order
-  std::uint32_t count = 0;  // 0 for an inner node
+  double lo[3], hi[3];
+  std::uint32_t index;  // inner: first of two consecutive children; leaf: first slot in order
+  std::uint32_t count;  // 0 for an inner node
+  void set_box(const Box& b) {
+    std::copy(b.lo, b.lo + 3, lo);
+    std::copy(b.hi, b.hi + 3, hi);
+  }
+  double half_area() const {
+    const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    return dx * dy + dy * dz + dz * dx;
+  }
 };
 
 // Squared distances from p to the four boxes of a node (float frame).
@@ -108,16 +123,16 @@ inline void cross3(const F4 a[3], const F4 b[3], F4 out[3]) {
 
 }  // namespace
 
-TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties)
+TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
     : eval_(target, ties, /*with_spheres=*/false) {
-  build();
+  build(threads);
 }
 
 std::size_t TriangleBvh::memory_bytes() const {
   return nodes_.size() * sizeof(Node) + leaves_.size() * sizeof(Leaf);
 }
 
-void TriangleBvh::build() {
+void TriangleBvh::build(int threads) {
   const TriMesh& m = *eval_.mesh;
   const auto n = static_cast<std::uint32_t>(m.faces.size());
   assert(n > 0);
@@ -128,45 +143,43 @@ void TriangleBvh::build() {
   const Vec3 half = 0.5 * (bbox.max - bbox.min);
   const double extent = std::max({half.x, half.y, half.z});
   scale_ = extent > 0.0 && std::isfinite(1.0 / extent) ? 1.0 / extent : 1.0;
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  const auto vertices = static_cast<std::int64_t>(m.positions.size());
   std::vector<std::array<double, 3>> frame(m.positions.size());
-  for (std::size_t v = 0; v < m.positions.size(); ++v)
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t v = 0; v < vertices; ++v)
     for (int k = 0; k < 3; ++k) frame[v][k] = (m.positions[v][k] - origin_[k]) * scale_;
 
   // Binary SAH tree over the face boxes (float frame, double precision).
   std::vector<Box> boxes(n);
   std::vector<std::array<double, 3>> centroids(n);
-  for (std::uint32_t f = 0; f < n; ++f) {
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t f = 0; f < static_cast<std::int64_t>(n); ++f) {
     for (std::uint32_t v : m.faces[f]) boxes[f].extend(frame[v].data());
     for (int k = 0; k < 3; ++k) centroids[f][k] = 0.5 * (boxes[f].lo[k] + boxes[f].hi[k]);
   }
   std::vector<std::uint32_t> order(n);
   std::iota(order.begin(), order.end(), 0u);
-  std::vector<BinaryNode> tree;
-  tree.reserve(2 * (n / kLeafSize + 1));
-  tree.emplace_back();
-  struct Task {
-    std::uint32_t node, begin, end;
-    int depth;
-    bool known;  // bounds and centroid_bounds already computed (from the parent's bins)
-    Box bounds, centroid_bounds;
-  };
-  std::vector<Task> tasks{{0, 0, n, 1, false, {}, {}}};
-  while (!tasks.empty()) {
-    const Task task = tasks.back();
-    tasks.pop_back();
-    assert(task.depth <= kMaxBinaryDepth);
-    Box bounds = task.bounds, centroid_bounds = task.centroid_bounds;
-    if (!task.known)
-      for (std::uint32_t i = task.begin; i < task.end; ++i) {
+  // The binary tree has at most 2n - 1 nodes; children are allocated in pairs from a counter, so
+  // subtrees can be built in parallel (OpenMP tasks above kTaskBelow faces). The tree's shape
+  // does not depend on the thread count: each split depends only on its own range of faces.
+  const std::size_t max_nodes = 2 * static_cast<std::size_t>(n);
+  std::unique_ptr<BinaryNode[]> tree(new BinaryNode[max_nodes]);
+  std::atomic<std::uint32_t> next_node{1};
+  auto split = [&](auto&& self, std::uint32_t node, std::uint32_t begin, std::uint32_t end,
+                   int depth, bool known, Box bounds, Box centroid_bounds) -> void {
+    assert(depth <= kMaxBinaryDepth);
+    if (!known)
+      for (std::uint32_t i = begin; i < end; ++i) {
         bounds.extend(boxes[order[i]]);
         centroid_bounds.extend(centroids[order[i]].data());
       }
-    tree[task.node].box = bounds;
-    const std::uint32_t count = task.end - task.begin;
+    tree[node].set_box(bounds);
+    const std::uint32_t count = end - begin;
     if (count <= kLeafSize) {
-      tree[task.node].index = task.begin;
-      tree[task.node].count = count;
-      continue;
+      tree[node].index = begin;
+      tree[node].count = count;
+      return;
     }
     int axis = 0;
     double axis_extent = -1.0;
@@ -176,10 +189,10 @@ void TriangleBvh::build() {
         axis = k;
       }
     // Equal centroids or too deep: split the list in halves, which bounds depth and leaf sizes.
-    std::uint32_t mid = task.begin + std::max(kLeafSize, count / 2 / kLeafSize * kLeafSize);
+    std::uint32_t mid = begin + std::max(kLeafSize, count / 2 / kLeafSize * kLeafSize);
     bool children_known = false;
     Box child_bounds[2], child_centroids[2];
-    if (axis_extent > 0.0 && task.depth < kMaxSahDepth) {
+    if (axis_extent > 0.0 && depth < kMaxSahDepth) {
       Box bin_box[kBins], bin_centroids[kBins];
       std::uint32_t bin_count[kBins] = {};
       const double scale = kBins / axis_extent;
@@ -187,7 +200,7 @@ void TriangleBvh::build() {
         const int b = static_cast<int>((centroids[f][axis] - centroid_bounds.lo[axis]) * scale);
         return std::clamp(b, 0, kBins - 1);
       };
-      for (std::uint32_t i = task.begin; i < task.end; ++i) {
+      for (std::uint32_t i = begin; i < end; ++i) {
         const int b = bin_of(order[i]);
         bin_box[b].extend(boxes[order[i]]);
         bin_centroids[b].extend(centroids[order[i]].data());
@@ -218,7 +231,7 @@ void TriangleBvh::build() {
         }
       }
       if (best_split > 0) {
-        auto it = std::partition(order.begin() + task.begin, order.begin() + task.end,
+        auto it = std::partition(order.begin() + begin, order.begin() + end,
                                  [&](std::uint32_t f) { return bin_of(f) < best_split; });
         mid = static_cast<std::uint32_t>(it - order.begin());
         for (int b = 0; b < kBins; ++b) {
@@ -231,7 +244,7 @@ void TriangleBvh::build() {
       // along the split axis moves at most two faces across): leaves are then full blocks of 4
       // except about one per subtree of kAlignBelow faces, which keeps the structure near 55
       // bytes per face instead of about 77 (SAH alone leaves blocks 2/3 full).
-      const std::uint32_t sah_left = mid - task.begin;
+      const std::uint32_t sah_left = mid - begin;
       const std::uint32_t aligned =
           count > kAlignBelow
               ? sah_left
@@ -239,24 +252,35 @@ void TriangleBvh::build() {
                                           kLeafSize, (count - 1) / kLeafSize * kLeafSize);
       if (aligned != sah_left) {
         children_known = false;
-        mid = task.begin + aligned;
-        std::nth_element(order.begin() + task.begin, order.begin() + mid,
-                         order.begin() + task.end, [&](std::uint32_t x, std::uint32_t y) {
+        mid = begin + aligned;
+        std::nth_element(order.begin() + begin, order.begin() + mid,
+                         order.begin() + end, [&](std::uint32_t x, std::uint32_t y) {
                            return centroids[x][axis] < centroids[y][axis] ||
                                   (centroids[x][axis] == centroids[y][axis] && x < y);
                          });
       }
     }
-    const auto left_child = static_cast<std::uint32_t>(tree.size());
-    tree.emplace_back();
-    tree.emplace_back();
-    tree[task.node].index = left_child;
-    tree[task.node].count = 0;
-    tasks.push_back({left_child + 1, mid, task.end, task.depth + 1, children_known,
-                     child_bounds[1], child_centroids[1]});
-    tasks.push_back({left_child, task.begin, mid, task.depth + 1, children_known,
-                     child_bounds[0], child_centroids[0]});
-  }
+    const std::uint32_t left_child = next_node.fetch_add(2);
+    assert(left_child + 1 < max_nodes);
+    tree[node].index = left_child;
+    tree[node].count = 0;
+    if (count > kTaskBelow) {
+#pragma omp task default(shared) firstprivate(left_child, mid, children_known)
+      self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
+           child_centroids[0]);
+      self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
+           child_centroids[1]);
+#pragma omp taskwait
+    } else {
+      self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
+           child_centroids[0]);
+      self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
+           child_centroids[1]);
+    }
+  };
+#pragma omp parallel num_threads(team)
+#pragma omp single
+  split(split, 0, 0, n, 1, false, Box{}, Box{});
 
   // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
   auto make_leaf = [&](const BinaryNode& b) {
@@ -296,8 +320,9 @@ void TriangleBvh::build() {
   // Collapse into 4-wide nodes (recursive: the binary depth is bounded).
   nodes_.clear();
   leaves_.clear();
-  nodes_.reserve(tree.size() / 3 + 1);
-  leaves_.reserve(tree.size() / 2 + 1);
+  const std::size_t used = next_node.load();
+  nodes_.reserve(used / 3 + 1);
+  leaves_.reserve(used / 2 + 1);
   depth_ = 0;
   auto collapse = [&](auto&& self, std::uint32_t bi, int depth) -> std::uint32_t {
     depth_ = std::max(depth_, depth);
@@ -308,8 +333,8 @@ void TriangleBvh::build() {
       int open = -1;
       double area = -1.0;
       for (int k = 0; k < count; ++k)
-        if (tree[kids[k]].count == 0 && tree[kids[k]].box.half_area() > area) {
-          area = tree[kids[k]].box.half_area();
+        if (tree[kids[k]].count == 0 && tree[kids[k]].half_area() > area) {
+          area = tree[kids[k]].half_area();
           open = k;
         }
       if (open < 0) break;
@@ -325,8 +350,8 @@ void TriangleBvh::build() {
     for (int k = 0; k < 4; ++k) {
       node.child[k] = refs[k];
       for (int axis = 0; axis < 3; ++axis) {
-        node.lo[axis][k] = k < count ? round_down(tree[kids[k]].box.lo[axis]) : kInf;
-        node.hi[axis][k] = k < count ? round_up(tree[kids[k]].box.hi[axis]) : -kInf;
+        node.lo[axis][k] = k < count ? round_down(tree[kids[k]].lo[axis]) : kInf;
+        node.hi[axis][k] = k < count ? round_up(tree[kids[k]].hi[axis]) : -kInf;
       }
     }
     return id;

@@ -25,8 +25,8 @@ std::size_t hash(std::uint64_t key, std::size_t mask) {
 
 }  // namespace
 
-TriangleGrid::TriangleGrid(const TriMesh& target, const TieOptions& ties)
-    : eval_(target, ties), bvh_(target, ties) {
+TriangleGrid::TriangleGrid(const TriMesh& target, const TieOptions& ties, int threads)
+    : eval_(target, ties), bvh_(target, ties, threads) {
   const std::size_t faces = target.faces.size();
   const BoundingBox box = bounding_box(target);
   const Vec3 extent = box.max - box.min;

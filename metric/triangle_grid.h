@@ -22,7 +22,7 @@ namespace meshdev {
 
 class TriangleGrid final : public NearestPointIndex {
  public:
-  TriangleGrid(const TriMesh& target, const TieOptions& ties = {});
+  TriangleGrid(const TriMesh& target, const TieOptions& ties = {}, int threads = 0);
   std::string name() const override { return "grid+bvh"; }
   double find(const Vec3& p, const QueryHint& hint, std::vector<SurfaceHit>& ties) const override;
 

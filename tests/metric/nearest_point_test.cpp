@@ -171,6 +171,24 @@ TEST(NearestPoint, BvhFloatCullingNeverChangesTheAnswer) {
   EXPECT_EQ(queries, 2 * 3 * 2 * 600);
 }
 
+// The build runs subtrees in parallel; the structure must not depend on the thread count.
+TEST(NearestPoint, BvhIsTheSameForAnyBuildThreadCount) {
+  const TriMesh m = test::icosphere(6);  // 81,920 faces: above the parallel-task threshold
+  const TriangleBvh one(m, {}, 1), two(m, {}, 2);
+  EXPECT_EQ(one.node_count(), two.node_count());
+  EXPECT_EQ(one.leaf_count(), two.leaf_count());
+  EXPECT_EQ(one.depth(), two.depth());
+  EXPECT_EQ(one.memory_bytes(), two.memory_bytes());
+  std::vector<SurfaceHit> t1, t2;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  for (int q = 0; q < 200; ++q) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    ASSERT_EQ(one.find(p, {}, t1), two.find(p, {}, t2));
+    expect_same(t1, t2);
+  }
+}
+
 // Structure size (issue 3 asks for at most 64 bytes per face) on a closed surface.
 TEST(NearestPoint, BvhStaysBelow64BytesPerFace) {
   const TriMesh sphere = test::icosphere(5);  // 20,480 faces
