@@ -76,20 +76,36 @@ Statistics compute_statistics(const std::vector<double>& values, const std::vect
   s.stddev = std::sqrt(s.variance);
 
   // Weighted quantiles: the smallest value whose cumulative weight reaches q of the total.
-  // Sorting (value, weight) pairs: equal values give the same quantile in any order, so an
-  // unstable sort is deterministic here (and much faster than sorting indices).
-  std::vector<std::pair<double, double>> sorted(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) sorted[i] = {values[i], weight(i)};
-  std::sort(sorted.begin(), sorted.end());
   const double qs[4] = {0.50, 0.90, 0.95, 0.99};
   double* outs[4] = {&s.p50, &s.p90, &s.p95, &s.p99};
-  CompensatedSum cum;
-  int q = 0;
-  for (std::size_t k = 0; k < sorted.size() && q < 4; ++k) {
-    cum.add(sorted[k].second);
-    while (q < 4 && cum.value() >= qs[q] * s.weight_sum) *outs[q++] = sorted[k].first;
+  if (!s.area_weighted) {
+    // Equal weights: the quantile is the order statistic k = ceil(q n) - 1, found by selection
+    // (O(n), ascending q on shrinking ranges) instead of a full sort.
+    std::vector<double> scratch(values);
+    const auto n = static_cast<double>(values.size());
+    std::size_t from = 0;
+    for (int q = 0; q < 4; ++q) {
+      const double rank = std::ceil(qs[q] * n) - 1.0;
+      const auto k = static_cast<std::size_t>(std::clamp(rank, 0.0, n - 1.0));
+      std::nth_element(scratch.begin() + static_cast<std::ptrdiff_t>(from),
+                       scratch.begin() + static_cast<std::ptrdiff_t>(k), scratch.end());
+      *outs[q] = scratch[k];
+      from = k;
+    }
+  } else {
+    // Sorting (value, weight) pairs: equal values give the same quantile in any order, so an
+    // unstable sort is deterministic here (and much faster than sorting indices).
+    std::vector<std::pair<double, double>> sorted(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) sorted[i] = {values[i], weight(i)};
+    std::sort(sorted.begin(), sorted.end());
+    CompensatedSum cum;
+    int q = 0;
+    for (std::size_t k = 0; k < sorted.size() && q < 4; ++k) {
+      cum.add(sorted[k].second);
+      while (q < 4 && cum.value() >= qs[q] * s.weight_sum) *outs[q++] = sorted[k].first;
+    }
+    while (q < 4) *outs[q++] = s.max;
   }
-  while (q < 4) *outs[q++] = s.max;
 
   // Histogram over [min(0, min), max].
   const int bins = std::max(1, histogram_bins);

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace meshdev {
 namespace {
@@ -29,6 +32,28 @@ TEST(Statistics, WeightsShiftMeanAndQuantilesButNotExtremes) {
   EXPECT_EQ(s.p99, 10.0);
   EXPECT_TRUE(s.area_weighted);
   EXPECT_DOUBLE_EQ(s.weight_sum, 4.0);
+}
+
+// Equal weights take a selection path (nth_element); it must give the order statistics the
+// weighted definition gives: the smallest value whose cumulative weight reaches q of the total.
+TEST(Statistics, EqualWeightQuantilesAreTheOrderStatisticsOfTheDefinition) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (std::size_t n : {1u, 2u, 3u, 7u, 100u, 101u, 1000u, 4999u}) {
+    std::vector<double> values(n);
+    for (double& v : values) v = std::floor(u(rng) * 50.0) / 7.0;  // many equal values
+    const Statistics s = compute_statistics(values, std::vector<double>(n, 0.25));
+    EXPECT_FALSE(s.area_weighted);
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    const double qs[4] = {0.50, 0.90, 0.95, 0.99};
+    const double got[4] = {s.p50, s.p90, s.p95, s.p99};
+    for (int q = 0; q < 4; ++q) {
+      std::size_t k = 0;  // smallest k with (k + 1) / n >= q, counted exactly
+      while (static_cast<double>(k + 1) < qs[q] * static_cast<double>(n)) ++k;
+      EXPECT_EQ(got[q], sorted[k]) << "n " << n << " q " << qs[q];
+    }
+  }
 }
 
 TEST(Statistics, AllZeroWeightsFallBackToEqualWeights) {
