@@ -424,36 +424,33 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
       // Lower bound: sqrt(h^2 + max_e out_e^2) / |n|, h = n.(p - a) the plane offset and
       // out_e = m_e.(p - origin of e) the outward offset from edge e (m_e = e x n, |m_e| =
       // |e||n|), exact in the face and edge regions, below the distance near the corners.
-      // Written edge by edge, reloading corners from the leaf (L1-resident), so that few values
-      // are live at once: SSE has 16 registers and spills cost more than loads.
-      auto corner = [&](int c, int k) { return F4::load(leaf.corner[c][k]); };
-      F4 e0[3], e2[3], nrm[3], rel[3], m[3];
+      F4 a[3], b[3], c[3], ap[3], bp[3], cp[3], e0[3], e1[3], e2[3];
       for (int k = 0; k < 3; ++k) {
-        e0[k] = corner(1, k) - corner(0, k);
-        e2[k] = corner(2, k) - corner(0, k);
+        a[k] = F4::load(leaf.corner[0][k]);
+        b[k] = F4::load(leaf.corner[1][k]);
+        c[k] = F4::load(leaf.corner[2][k]);
+        ap[k] = pf[k] - a[k];
+        bp[k] = pf[k] - b[k];
+        cp[k] = pf[k] - c[k];
+        e0[k] = b[k] - a[k];
+        e1[k] = c[k] - b[k];
+        e2[k] = c[k] - a[k];
       }
+      F4 nrm[3], m[3];
       cross3(e0, e2, nrm);
+      const F4 h = dot3(nrm, ap);
       const F4 n2 = dot3(nrm, nrm);
-      for (int k = 0; k < 3; ++k) rel[k] = pf[k] - corner(0, k);  // p - a
-      const F4 h = dot3(nrm, rel);
-      F4 reach = abs(rel[0]) + abs(rel[1]) + abs(rel[2]);
       cross3(e0, nrm, m);
-      F4 s = max(dot3(m, rel), zero);
-      F4 out2 = s * s / dot3(e0, e0);
-      for (int k = 0; k < 3; ++k) {
-        rel[k] = pf[k] - corner(1, k);          // p - b
-        e0[k] = corner(2, k) - corner(1, k);    // e1 = c - b
-      }
-      reach = reach + abs(rel[0]) + abs(rel[1]) + abs(rel[2]);
-      cross3(e0, nrm, m);
-      s = max(dot3(m, rel), zero);
-      out2 = max(out2, s * s / dot3(e0, e0));
-      for (int k = 0; k < 3; ++k) rel[k] = pf[k] - corner(2, k);  // p - c
-      reach = reach + abs(rel[0]) + abs(rel[1]) + abs(rel[2]);
+      const F4 s0 = max(dot3(m, ap), zero);
+      cross3(e1, nrm, m);
+      const F4 s1 = max(dot3(m, bp), zero);
       cross3(nrm, e2, m);
-      s = max(dot3(m, rel), zero);
-      out2 = max(out2, s * s / dot3(e2, e2));
+      const F4 s2 = max(dot3(m, cp), zero);
+      const F4 out2 = max(max(s0 * s0 / dot3(e0, e0), s1 * s1 / dot3(e1, e1)),
+                          s2 * s2 / dot3(e2, e2));
       const F4 bound_n2 = h * h + out2;  // = lower bound^2 x |n|^2
+      const F4 reach = abs(ap[0]) + abs(ap[1]) + abs(ap[2]) + abs(bp[0]) + abs(bp[1]) +
+                       abs(bp[2]) + abs(cp[0]) + abs(cp[1]) + abs(cp[2]);
       const F4 margin = F4::load(leaf.margin) * reach;
       const F4 radius = F4::splat(leaf_limit) + margin;
       // Lanes whose bound exceeds the radius are out; NaN or infinite radii keep the lane.
