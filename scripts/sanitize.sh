@@ -5,7 +5,8 @@
 #   3. ThreadSanitizer over the OpenMP paths (clang + LLVM libomp with its Archer tool):
 #      metric_tests --gtest_filter='Compare*:NastyMeshes*'.
 # Installs what it needs (idempotent, like scripts/quickstart.sh). Ends with "N passed, M failed"
-# over the steps and exits non-zero if a step failed.
+# over the steps and exits non-zero if a step failed. .ci/run runs `all` (30 s per fuzz target)
+# after `quickstart.sh test`; measured times in docs/robustness.md "Measured runs".
 #   bash scripts/sanitize.sh              all three steps
 #   bash scripts/sanitize.sh asan|fuzz|tsan   one step
 # Environment: MESHDEV_JOBS (default nproc), MESHDEV_FUZZ_SECONDS (per target, default 60).
