@@ -5,7 +5,8 @@
 #   3. ThreadSanitizer over the OpenMP paths (clang + LLVM libomp with its Archer tool):
 #      metric_tests --gtest_filter='Compare*:NastyMeshes*'.
 # Installs what it needs (idempotent, like scripts/quickstart.sh). Ends with "N passed, M failed"
-# over the steps and exits non-zero if a step failed.
+# over the steps and exits non-zero if a step failed. .ci/run runs `all` (30 s per fuzz target)
+# after `quickstart.sh test`; measured times in docs/robustness.md "Measured runs".
 #   bash scripts/sanitize.sh              all three steps
 #   bash scripts/sanitize.sh asan|fuzz|tsan   one step
 # Environment: MESHDEV_JOBS (default nproc), MESHDEV_FUZZ_SECONDS (per target, default 60).
@@ -18,9 +19,15 @@ passed=0
 failed=0
 failures=()
 
+# Enough to build and pass the ASan step when run alone: libstb-dev (cmake/stb.cmake, REQUIRED)
+# and python3-matplotlib (harness.cli_sweep_kill_resume_guard_merge checks `meshdev plot`).
+# What scripts/quickstart.sh installs besides (libcgal-demo's meshes, python3-vtk9, meshlab, xvfb)
+# adds tests that skip, or backends that are left out of the conformance suite, when missing; CI
+# runs quickstart.sh first, so there the ASan step runs them too.
 packages=(
   build-essential cmake pkg-config python3 clang libclang-rt-14-dev libomp-14-dev
   libopenmesh-dev libgtest-dev libgmock-dev libcli11-dev nlohmann-json3-dev libmeshoptimizer-dev
+  libstb-dev python3-matplotlib
 )
 
 source "$here/scripts/install_packages.sh"
@@ -47,6 +54,13 @@ step() {  # step NAME COMMAND...: runs one step, counts it
 #    -fsanitize, which cannot link against the instrumented libraries (undefined __asan_*).
 asan_excluded='meshlab_reference|harness.install_find_package'
 
+# A sanitizer report must fail every test, including those that expect a non-zero exit: the
+# sanitizers exit 1 by default, which is also `meshdev guard`'s "regression" code, so a report in
+# a guard run that tests expect to exit 1 (tests/harness/sweep_cli_test.py) would pass unseen.
+# 86 is no meshdev exit code (apps/exit_codes.h: 0-5, 70). Set for ASan (LeakSanitizer included)
+# and for gcc's separate UBSan runtime.
+sanitizer_exitcode=86
+
 asan() {
   local build="$here/build-asan"
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMESHDEV_WITH_CGAL=OFF \
@@ -54,8 +68,8 @@ asan() {
     >/dev/null || return 1
   cmake --build "$build" -j "$jobs" >"$build/build.log" 2>&1 || { tail -40 "$build/build.log"; return 1; }
   (cd "$build" &&
-    ASAN_OPTIONS=halt_on_error=1:detect_leaks=1 \
-    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+    ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:exitcode=$sanitizer_exitcode \
+    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:exitcode=$sanitizer_exitcode \
     MESHDEV_SANITIZED=1 \
     ctest --output-on-failure -j "$jobs" -E "$asan_excluded" --timeout 1200)
 }
@@ -96,8 +110,11 @@ tsan() {
     -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" >/dev/null || return 1
   cmake --build "$build" -j "$jobs" --target metric_tests >"$build/build.log" 2>&1 ||
     { tail -40 "$build/build.log"; return 1; }
-  ldd "$build/tests/metric/metric_tests" | grep -q 'libomp' ||
-    { echo "metric_tests is not linked with LLVM's libomp"; return 1; }
+  # Not `ldd | grep -q`: grep -q exits at the first match, ldd then dies of SIGPIPE and pipefail
+  # fails the check although libomp is there (1 run in 5 here).
+  local libs
+  libs=$(ldd "$build/tests/metric/metric_tests") || return 1
+  [[ $libs == *libomp.so* ]] || { echo "metric_tests is not linked with LLVM's libomp"; return 1; }
   OMP_TOOL_LIBRARIES="$archer" OMP_NUM_THREADS=2 \
     TSAN_OPTIONS="halt_on_error=1:ignore_noninstrumented_modules=1" \
     "$build/tests/metric/metric_tests" --gtest_filter='Compare*:NastyMeshes*' --gtest_brief=1
