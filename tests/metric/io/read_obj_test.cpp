@@ -8,7 +8,6 @@
 #include "metric/io/mesh_io.h"
 #include "tests/metric/io/io_test_util.h"
 #include "tests/support/test_data.h"
-#include "tests/support/timing.h"
 
 namespace meshdev::test {
 namespace {
@@ -172,18 +171,13 @@ TEST(ReadObjReal, VestaNormalsPerVertex) {
   EXPECT_NO_THROW(validate(m, "vesta"));
 }
 
-TEST(ReadObjReal, BuildingsLoadsFast) {
+// Its read speed is a benchmark (bench/io/read_mesh_bench.cpp), not a unit test.
+TEST(ReadObjReal, BuildingsLoads) {
   std::string data = shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
-  auto t0 = std::chrono::steady_clock::now();
   TriMesh m = read_mesh(data + "/large/buildings.obj");
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_EQ(m.num_vertices(), 200062u);
   EXPECT_EQ(m.num_faces(), 400020u);
-  std::cout << "[          ] buildings.obj read in " << seconds << " s\n";
-#ifdef NDEBUG
-  EXPECT_LT(seconds, 1.0 * kTimeBoundScale);
-#endif
 }
 
 }  // namespace

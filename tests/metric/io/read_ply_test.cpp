@@ -8,7 +8,6 @@
 #include "metric/io/mesh_io.h"
 #include "tests/metric/io/io_test_util.h"
 #include "tests/support/test_data.h"
-#include "tests/support/timing.h"
 
 namespace meshdev::test {
 namespace {
@@ -246,19 +245,13 @@ TEST(ReadPly, MalformedInputs) {
 TEST(ReadPlyReal, StanfordBunnyWithScannerScalars) {
   std::string data = shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
-  auto t0 = std::chrono::steady_clock::now();
   TriMesh m = read_mesh(data + "/scalar/stanford_bunny/bun_zipper.ply");
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cout << "[          ] bun_zipper.ply read in " << seconds << " s\n";
   EXPECT_EQ(m.num_vertices(), 35947u);
   EXPECT_EQ(m.num_faces(), 69451u);
   ASSERT_NE(m.channel("confidence"), nullptr);
   ASSERT_NE(m.channel("intensity"), nullptr);
   EXPECT_EQ(m.channel("confidence")->storage, Storage::kPerVertex);
   EXPECT_NO_THROW(validate(m, "bun_zipper"));
-#ifdef NDEBUG
-  EXPECT_LT(seconds, 1.0 * kTimeBoundScale);
-#endif
 }
 
 TEST(ReadPlyReal, ColoredAirplane) {
