@@ -20,10 +20,10 @@ using simd::F4;
 
 constexpr int kBins = 16;
 constexpr std::uint32_t kLeafSize = 4;
-constexpr std::uint32_t kAlignBelow = 32;
-constexpr std::uint32_t kTaskBelow = 1u << 15;  // smaller subtrees are built by one thread  // subtrees this small split at multiples of 4
+constexpr std::uint32_t kAlignBelow = 32;       // subtrees this small split at multiples of 4
+constexpr std::uint32_t kTaskBelow = 1u << 15;  // smaller subtrees are built by one thread
 // Below this depth the binary build splits by SAH; deeper (only for pathological inputs) it splits
-// the list in halves, so the depth stays below kMaxDepth + 32 and leaves keep <= 4 faces.
+// the list in halves, so the depth stays below kMaxSahDepth + 33 and leaves keep <= 4 faces.
 constexpr int kMaxSahDepth = 60;
 constexpr int kMaxBinaryDepth = kMaxSahDepth + 33;
 // Each 4-wide level pushes at most 3 entries more than it pops.
