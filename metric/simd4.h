@@ -27,6 +27,7 @@ inline F4 operator/(F4 a, F4 b) { return {_mm_div_ps(a.v, b.v)}; }
 inline F4 max(F4 a, F4 b) { return {_mm_max_ps(a.v, b.v)}; }
 inline F4 min(F4 a, F4 b) { return {_mm_min_ps(a.v, b.v)}; }
 inline F4 abs(F4 a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)}; }
+inline F4 sqrt(F4 a) { return {_mm_sqrt_ps(a.v)}; }  // correctly rounded
 // Bit k set when lane k satisfies a > b (false for NaN lanes).
 inline int greater_mask(F4 a, F4 b) { return _mm_movemask_ps(_mm_cmpgt_ps(a.v, b.v)); }
 inline void store(float* p, F4 a) { _mm_storeu_ps(p, a.v); }
@@ -60,6 +61,11 @@ inline F4 min(F4 a, F4 b) {
 inline F4 abs(F4 a) {
   F4 r;
   for (int k = 0; k < 4; ++k) r.v[k] = std::fabs(a.v[k]);
+  return r;
+}
+inline F4 sqrt(F4 a) {
+  F4 r;
+  for (int k = 0; k < 4; ++k) r.v[k] = std::sqrt(a.v[k]);
   return r;
 }
 inline int greater_mask(F4 a, F4 b) {

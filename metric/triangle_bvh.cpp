@@ -38,7 +38,11 @@ constexpr double kUnit = 0x1p-24;  // unit roundoff of float (round to nearest)
 // rounding analysis gives about 20 u (1 + kappa) (|ap| + |bp| + |cp|); 64 leaves a factor 3.
 constexpr double kMarginConstant = 64.0;
 constexpr double kMaxKappa = 1e6;      // slivers beyond this are never culled by the bound
-constexpr double kMinNormal2 = 1e-28;  // |ab x ac|^2 below this (float frame): never culled
+// |ab x ac|^2 below this (float frame, where B spans [-1, 1]): never culled by the triangle
+// bound. Keeps |n| >= 1e-10 and |e| |n| >= 3e-21, so a float underflow anywhere in the bound
+// (absolute error <= 2^-149 per operation, divided by at most |e| |n|) stays ~1e-24, far below
+// the margin (>= 64 u 2 |e| >= 3e-16).
+constexpr double kMinNormal2 = 1e-20;
 constexpr double kMaxQuery = 1e12;     // queries farther out (float frame) are never culled
 
 struct Box {
@@ -438,29 +442,31 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
       }
       F4 nrm[3], m[3];
       cross3(e0, e2, nrm);
-      const F4 h = dot3(nrm, ap);
-      const F4 n2 = dot3(nrm, nrm);
+      // Each offset is divided by its normal's length before it is squared, so the squares stay
+      // near the distance's own magnitude: squaring the raw offsets (degree 6 in the triangle's
+      // size) underflowed to denormals for triangles a few 1e-6 of the mesh, with errors far
+      // above the margin (found by fuzz_nearest_point).
+      const F4 n_len = sqrt(dot3(nrm, nrm));
+      const F4 h = dot3(nrm, ap) / n_len;
       cross3(e0, nrm, m);
-      const F4 s0 = max(dot3(m, ap), zero);
+      const F4 s0 = max(dot3(m, ap), zero) / (sqrt(dot3(e0, e0)) * n_len);
       cross3(e1, nrm, m);
-      const F4 s1 = max(dot3(m, bp), zero);
+      const F4 s1 = max(dot3(m, bp), zero) / (sqrt(dot3(e1, e1)) * n_len);
       cross3(nrm, e2, m);
-      const F4 s2 = max(dot3(m, cp), zero);
-      const F4 out2 = max(max(s0 * s0 / dot3(e0, e0), s1 * s1 / dot3(e1, e1)),
-                          s2 * s2 / dot3(e2, e2));
-      const F4 bound_n2 = h * h + out2;  // = lower bound^2 x |n|^2
+      const F4 s2 = max(dot3(m, cp), zero) / (sqrt(dot3(e2, e2)) * n_len);
+      const F4 out = max(max(s0, s1), s2);
+      const F4 bound2 = h * h + out * out;  // = lower bound^2
       const F4 reach = abs(ap[0]) + abs(ap[1]) + abs(ap[2]) + abs(bp[0]) + abs(bp[1]) +
                        abs(bp[2]) + abs(cp[0]) + abs(cp[1]) + abs(cp[2]);
       const F4 margin = F4::load(leaf.margin) * reach;
       const F4 radius = F4::splat(leaf_limit) + margin;
       // Lanes whose bound exceeds the radius are out; NaN or infinite radii keep the lane.
-      int keep = ~greater_mask(bound_n2, radius * radius * n2 * F4::splat(1.0f + 1e-5f)) & 0xf;
+      int keep = ~greater_mask(bound2, radius * radius * F4::splat(1.0f + 1e-5f)) & 0xf;
       if (keep == 0) continue;
       // The survivors, nearest bound first; each is checked again against the radius as the
       // exact tests before it shrink it.
-      float bound[4], norm2[4], lane_margin[4];
-      simd::store(bound, bound_n2);
-      simd::store(norm2, n2);
+      float bound[4], lane_margin[4];
+      simd::store(bound, bound2);
       simd::store(lane_margin, margin);
       int lanes[4], count = 0;
       while (keep != 0) {
@@ -469,14 +475,14 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
         const std::uint32_t f = leaf.face[lane];
         if (f == kNoFace || f == hint.start_face) continue;
         int j = count++;
-        for (; j > 0 && bound[lanes[j - 1]] * norm2[lane] > bound[lane] * norm2[lanes[j - 1]]; --j)
+        for (; j > 0 && bound[lanes[j - 1]] > bound[lane]; --j)
           lanes[j] = lanes[j - 1];
         lanes[j] = lane;
       }
       for (int k = 0; k < count; ++k) {
         const int lane = lanes[k];
         const float r = leaf_limit + lane_margin[lane];
-        if (k > 0 && bound[lane] > r * r * norm2[lane] * (1.0f + 1e-5f)) continue;
+        if (k > 0 && bound[lane] > r * r * (1.0f + 1e-5f)) continue;
         consider(leaf.face[lane]);
       }
       continue;

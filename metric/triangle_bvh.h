@@ -17,8 +17,9 @@
 //   boxes are rounded outwards; the query's own rounding and the corners' rounding are measured
 //   and added to the radius; the triangle lower bound sqrt(h^2 + max_e out_e^2) (distance to the
 //   supporting plane and to the edge half-planes) gets a margin 64 u (2 + kappa) (|ap|+|bp|+|cp|)
-//   that covers its rounding error (u = 2^-24, kappa = |ab||ac| / |ab x ac|); slivers
-//   (kappa > 1e6), tiny triangles and queries beyond 1e12 mesh sizes are never culled by it.
+//   that covers its rounding error (u = 2^-24, kappa = |ab||ac| / |ab x ac|; offsets are
+//   normalised before squaring, so nothing that matters underflows); slivers (kappa > 1e6),
+//   triangles under ~1e-5 of the mesh and queries beyond 1e12 mesh sizes are never culled by it.
 // Ref: Wald, "On fast construction of SAH-based bounding volume hierarchies" (2007) for binning;
 //      Wald et al., "Getting rid of packets" (2008) and Embree for 4-wide nodes.
 #include <cstdint>

@@ -189,6 +189,34 @@ TEST(NearestPoint, BvhIsTheSameForAnyBuildThreadCount) {
   }
 }
 
+// Found by fuzz_nearest_point: one vertex 1e6 away makes the float frame 5e5 wide, so a cluster of
+// unit triangles (duplicates among them) is a few 1e-6 of it; squaring the raw plane and edge
+// offsets underflowed and the bound overestimated a duplicate tie's distance by 1 %.
+TEST(NearestPoint, BvhKeepsTiesOfTrianglesTinyInTheFloatFrame) {
+  for (double far : {1e4, 1e5, 1e6, 1e7}) {
+    TriMesh m;
+    std::mt19937_64 rng(static_cast<std::uint64_t>(far));
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    for (int v = 0; v < 12; ++v) m.positions.push_back({u(rng), u(rng), u(rng)});
+    m.positions.push_back({0.0, 0.0, -far});
+    for (std::uint32_t k = 0; k < 12; ++k) {
+      const Triangle t{k, (k + 1) % 12, (k + 5) % 12};
+      m.faces.push_back(t);
+      m.faces.push_back({t[0], t[2], t[1]});  // the same triangle, other winding: always a tie
+    }
+    m.faces.push_back({0, 6, 12});
+    TriangleBvh bvh(m);
+    NearestPointBrute brute(m);
+    std::vector<SurfaceHit> tb, tf;
+    std::uniform_real_distribution<double> q(-8.0, 8.0);
+    for (int k = 0; k < 400; ++k) {
+      const Vec3 p{q(rng), q(rng), q(rng)};
+      ASSERT_EQ(bvh.find(p, {}, tb), brute.find(p, {}, tf)) << "far " << far << " query " << k;
+      expect_same(tb, tf);
+    }
+  }
+}
+
 // Structure size (issue 3 asks for at most 64 bytes per face) on a closed surface.
 TEST(NearestPoint, BvhStaysBelow64BytesPerFace) {
   const TriMesh sphere = test::icosphere(5);  // 20,480 faces
