@@ -46,6 +46,15 @@ constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutiv
 
 }  // namespace
 
+QueryHint sample_hint(const TriMesh& reference, const Sample& s, Vec3 corners[3]) {
+  QueryHint hint;
+  if (s.face == kNoFace) return hint;
+  for (int c = 0; c < 3; ++c) corners[c] = reference.positions[reference.faces[s.face][c]];
+  hint.source = corners;
+  hint.source_bary = s.bary;
+  return hint;
+}
+
 SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
                                     const PreparedMesh& target, const NearestPointIndex& index,
                                     const std::vector<Measure>& measures,
@@ -94,12 +103,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
       for (std::size_t i = static_cast<std::size_t>(chunk) * kChunk; i < end; ++i) {
         const Sample& s = samples.samples[i];
         Vec3 corners[3];
-        QueryHint hint;
-        if (s.face != kNoFace) {
-          for (int c = 0; c < 3; ++c) corners[c] = ref.positions[ref.faces[s.face][c]];
-          hint.source = corners;
-          hint.source_bary = s.bary;
-        }
+        QueryHint hint = sample_hint(ref, s, corners);
         hint.start_face = previous;
         const double distance = index.find(s.point, hint, ties);
         assert(!ties.empty());

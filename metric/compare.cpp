@@ -54,13 +54,7 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
     if (!dev.nearest.empty()) return dev.nearest[i];
     const Sample& s = samples.samples[i];
     Vec3 corners[3];
-    QueryHint hint;
-    if (s.face != kNoFace) {
-      for (int c = 0; c < 3; ++c) corners[c] = from.mesh->positions[from.mesh->faces[s.face][c]];
-      hint.source = corners;
-      hint.source_bary = s.bary;
-    }
-    index->find(s.point, hint, ties);
+    index->find(s.point, sample_hint(*from.mesh, s, corners), ties);
     return ties.front();
   };
 
