@@ -42,6 +42,17 @@ std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const Pr
   return groups;
 }
 
+// One query's ties inside a BatchHits.
+struct TieRange {
+  const SurfaceHit* first;
+  std::size_t count;
+  const SurfaceHit* begin() const { return first; }
+  const SurfaceHit* end() const { return first + count; }
+  std::size_t size() const { return count; }
+  const SurfaceHit& front() const { return *first; }
+  const SurfaceHit& operator[](std::size_t k) const { return first[k]; }
+};
+
 constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutive = coherent)
 
 }  // namespace
@@ -92,26 +103,33 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
 
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<SurfaceHit> ties;
+    BatchHits batch;
+    std::vector<Vec3> points, corners;
+    std::vector<QueryHint> hints;
     std::vector<double> best;
     std::vector<UvHit> uv_hits;
     double fa[16], fb[16];
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
-      std::uint32_t previous = kNoFace;
-      const std::size_t end = std::min(n, static_cast<std::size_t>(chunk + 1) * kChunk);
-      for (std::size_t i = static_cast<std::size_t>(chunk) * kChunk; i < end; ++i) {
+      // The chunk's nearest points in one batch (consecutive samples are near each other).
+      const std::size_t begin = static_cast<std::size_t>(chunk) * kChunk;
+      const std::size_t end = std::min(n, begin + kChunk);
+      points.resize(end - begin);
+      hints.resize(end - begin);
+      corners.resize(3 * (end - begin));
+      for (std::size_t i = begin; i < end; ++i) {
+        points[i - begin] = samples.samples[i].point;
+        hints[i - begin] = sample_hint(ref, samples.samples[i], &corners[3 * (i - begin)]);
+      }
+      index.find_batch(points.data(), hints.data(), end - begin, batch);
+      for (std::size_t i = begin; i < end; ++i) {
         const Sample& s = samples.samples[i];
-        Vec3 corners[3];
-        QueryHint hint = sample_hint(ref, s, corners);
-        hint.start_face = previous;
-        const double distance = index.find(s.point, hint, ties);
-        assert(!ties.empty());
-        previous = ties.front().face;
+        const TieRange ties{batch.ties_begin(i - begin), batch.tie_count(i - begin)};
+        assert(ties.size() > 0);
         if (options.keep_nearest) out.nearest[i] = ties.front();
         out.nearest_feature[i] = ties.front().feature;
         out.tie_count[i] = static_cast<std::uint32_t>(ties.size());
-        out.values[0][i] = distance;
+        out.values[0][i] = batch.distance[i - begin];
 
         for (const ChannelGroup& g : groups) {
           interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);

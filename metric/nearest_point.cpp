@@ -20,6 +20,25 @@ std::unique_ptr<NearestPointIndex> make_nearest_point_index(const TriMesh& targe
   return std::make_unique<TriangleGrid>(target, ties, threads);
 }
 
+void NearestPointIndex::find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
+                                   BatchHits& out) const {
+  out.distance.resize(count);
+  out.first.resize(count + 1);
+  out.hits.clear();
+  out.first[0] = 0;
+  out.packet_queries = 0;
+  std::vector<SurfaceHit> ties;
+  std::uint32_t previous = kNoFace;
+  for (std::size_t i = 0; i < count; ++i) {
+    QueryHint hint = hints != nullptr ? hints[i] : QueryHint{};
+    if (hint.start_face == kNoFace) hint.start_face = previous;
+    out.distance[i] = find(points[i], hint, ties);
+    out.hits.insert(out.hits.end(), ties.begin(), ties.end());
+    out.first[i + 1] = static_cast<std::uint32_t>(out.hits.size());
+    previous = ties.front().face;
+  }
+}
+
 namespace detail {
 namespace {
 
@@ -98,6 +117,10 @@ double FaceEvaluator::limit_sq(double best_sq) const {
 }
 
 void keep_ties(std::vector<SurfaceHit>& ties, double limit_sq) {
+  if (ties.size() == 1) {  // the common case
+    if (ties[0].sq_distance > limit_sq) ties.clear();
+    return;
+  }
   std::size_t kept = 0;
   for (const SurfaceHit& h : ties)
     if (h.sq_distance <= limit_sq) ties[kept++] = h;

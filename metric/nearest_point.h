@@ -46,6 +46,21 @@ struct QueryHint {
   std::uint32_t start_face = kNoFace;
 };
 
+// The answers to a batch of queries (NearestPointIndex::find_batch), flattened so a batch of
+// thousands of queries makes no per-query allocation.
+struct BatchHits {
+  std::vector<double> distance;      // per query: the minimum distance (absolute)
+  std::vector<std::uint32_t> first;  // per query, plus one: ties of query i are
+                                     // hits[first[i]] .. hits[first[i + 1] - 1], sorted by face
+  std::vector<SurfaceHit> hits;
+  std::size_t packet_queries = 0;  // how many were answered in packets (TriangleBvh), for tests
+                                   // and benchmarks; the answers do not depend on it
+
+  std::size_t size() const { return distance.size(); }
+  const SurfaceHit* ties_begin(std::size_t i) const { return hits.data() + first[i]; }
+  std::size_t tie_count(std::size_t i) const { return first[i + 1] - first[i]; }
+};
+
 // A nearest-point index over one target mesh. Thread-safe for concurrent queries.
 class NearestPointIndex {
  public:
@@ -57,6 +72,15 @@ class NearestPointIndex {
   // (absolute). Precondition: the target has at least one face (checked at construction).
   virtual double find(const Vec3& p, const QueryHint& hint,
                       std::vector<SurfaceHit>& ties) const = 0;
+
+  // Answers `count` queries at once, each exactly as find(points[i], hints[i]) would: same
+  // distance, same ties in the same order. Queries given in a coherent order (consecutive ones
+  // near each other, e.g. samples generated face by face or sorted along a Morton curve) let an
+  // index share work between them (TriangleBvh: packets). A hint whose start_face is kNoFace gets
+  // the previous query's nearest face. `hints` may be nullptr (no hints). The default loops over
+  // find(). O(count) queries.
+  virtual void find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
+                          BatchHits& out) const;
 };
 
 enum class IndexKind {

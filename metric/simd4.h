@@ -30,6 +30,8 @@ inline F4 abs(F4 a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)}; }
 inline F4 sqrt(F4 a) { return {_mm_sqrt_ps(a.v)}; }  // correctly rounded
 // Bit k set when lane k satisfies a > b (false for NaN lanes).
 inline int greater_mask(F4 a, F4 b) { return _mm_movemask_ps(_mm_cmpgt_ps(a.v, b.v)); }
+// Bit k set when lane k of a equals lane k of b.
+inline int equal_mask(F4 a, F4 b) { return _mm_movemask_ps(_mm_cmpeq_ps(a.v, b.v)); }
 inline void store(float* p, F4 a) { _mm_storeu_ps(p, a.v); }
 
 #else
@@ -71,6 +73,11 @@ inline F4 sqrt(F4 a) {
 inline int greater_mask(F4 a, F4 b) {
   int m = 0;
   for (int k = 0; k < 4; ++k) m |= (a.v[k] > b.v[k]) << k;
+  return m;
+}
+inline int equal_mask(F4 a, F4 b) {
+  int m = 0;
+  for (int k = 0; k < 4; ++k) m |= (a.v[k] == b.v[k]) << k;
   return m;
 }
 inline void store(float* p, F4 a) {

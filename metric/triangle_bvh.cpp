@@ -37,13 +37,21 @@ constexpr double kUnit = 0x1p-24;  // unit roundoff of float (round to nearest)
 // Margin constant of the triangle bound (see the header and docs/metric.md): the first-order
 // rounding analysis gives about 20 u (1 + kappa) (|ap| + |bp| + |cp|); 64 leaves a factor 3.
 constexpr double kMarginConstant = 64.0;
-constexpr double kMaxKappa = 1e6;      // slivers beyond this are never culled by the bound
+constexpr double kMaxKappa = 1e6;  // slivers beyond this are never culled by the bound
 // |ab x ac|^2 below this (float frame, where B spans [-1, 1]): never culled by the triangle
 // bound. Keeps |n| >= 1e-10 and |e| |n| >= 3e-21, so a float underflow anywhere in the bound
 // (absolute error <= 2^-149 per operation, divided by at most |e| |n|) stays ~1e-24, far below
 // the margin (>= 64 u 2 |e| >= 3e-16).
 constexpr double kMinNormal2 = 1e-20;
-constexpr double kMaxQuery = 1e12;     // queries farther out (float frame) are never culled
+constexpr double kMaxQuery = 1e12;  // queries farther out (float frame) are never culled
+
+// Packets (find_batch): at most kPacketSize consecutive queries whose box diagonal is at most
+// kPacketExtent mean longest edges of the target's faces; fewer than kMinPacket are answered one
+// by one, and a packet whose reach holds more than kMaxCandidates faces too.
+constexpr std::size_t kPacketSize = 64;
+constexpr std::size_t kMinPacket = 8;
+constexpr double kPacketExtent = 1.0;
+constexpr std::size_t kMaxCandidates = 256;
 
 struct Box {
   double lo[3] = {+1e300, +1e300, +1e300};
@@ -118,7 +126,9 @@ inline F4 box_sq_distances(const float lo[3][4], const float hi[3][4], const F4 
   return d2;
 }
 
-inline F4 dot3(const F4 a[3], const F4 b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline F4 dot3(const F4 a[3], const F4 b[3]) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 inline void cross3(const F4 a[3], const F4 b[3], F4 out[3]) {
   out[0] = a[1] * b[2] - a[2] * b[1];
   out[1] = a[2] * b[0] - a[0] * b[2];
@@ -257,8 +267,8 @@ void TriangleBvh::build(int threads) {
       if (aligned != sah_left) {
         children_known = false;
         mid = begin + aligned;
-        std::nth_element(order.begin() + begin, order.begin() + mid,
-                         order.begin() + end, [&](std::uint32_t x, std::uint32_t y) {
+        std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
+                         [&](std::uint32_t x, std::uint32_t y) {
                            return centroids[x][axis] < centroids[y][axis] ||
                                   (centroids[x][axis] == centroids[y][axis] && x < y);
                          });
@@ -287,6 +297,7 @@ void TriangleBvh::build(int threads) {
   split(split, 0, 0, n, 1, false, Box{}, Box{});
 
   // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
+  double size_sum = 0.0;  // of the faces' longest edges, for the packet extent
   auto make_leaf = [&](const BinaryNode& b) {
     Leaf leaf{};
     for (int lane = 0; lane < 4; ++lane) {
@@ -311,6 +322,7 @@ void TriangleBvh::build(int threads) {
       const Vec3 a{c[0][0], c[0][1], c[0][2]}, bb{c[1][0], c[1][1], c[1][2]},
           cc{c[2][0], c[2][1], c[2][2]};
       const Vec3 ab = bb - a, ac = cc - a;
+      size_sum += std::max({norm(ab), norm(ac), norm(cc - bb)});
       const double n2 = squared_norm(cross(ab, ac));
       const double kappa = n2 > 0.0 ? norm(ab) * norm(ac) / std::sqrt(n2) : kInf;
       // The float computation of |ab x ac|^2 must stay far from underflow (kMinNormal2).
@@ -361,7 +373,24 @@ void TriangleBvh::build(int threads) {
     return id;
   };
   root_ = collapse(collapse, 0, 1);
+  packet_extent_ = kPacketExtent * size_sum / n;
   assert(depth_ <= kMaxBinaryDepth);
+}
+
+bool TriangleBvh::to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const {
+  for (int k = 0; k < 3; ++k) {
+    q[k] = (p[k] - origin_[k]) * scale_;
+    qf[k] = static_cast<float>(q[k]);
+  }
+  const bool cull = std::fabs(q[0]) < kMaxQuery && std::fabs(q[1]) < kMaxQuery &&
+                    std::fabs(q[2]) < kMaxQuery;  // false for NaN
+  slack = corner_error_;
+  if (cull) {
+    const double ex = qf[0] - q[0], ey = qf[1] - q[1], ez = qf[2] - q[2];
+    slack += std::sqrt(ex * ex + ey * ey + ez * ez) +
+             4e-16 * (std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + 3.0);
+  }
+  return cull;
 }
 
 double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
@@ -375,18 +404,9 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
   const double floor_dist = hint.source != nullptr ? std::sqrt(eval_.exact_check_sq) : 0.0;
 
   // The query in the float frame, and how far rounding may have moved it (plus the corners').
-  const double q[3] = {(p.x - origin_.x) * scale_, (p.y - origin_.y) * scale_,
-                       (p.z - origin_.z) * scale_};
-  const float qf[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]),
-                       static_cast<float>(q[2])};
-  const bool cull = std::fabs(q[0]) < kMaxQuery && std::fabs(q[1]) < kMaxQuery &&
-                    std::fabs(q[2]) < kMaxQuery;  // false for NaN
-  double slack = corner_error_;
-  if (cull) {
-    const double ex = qf[0] - q[0], ey = qf[1] - q[1], ez = qf[2] - q[2];
-    slack += std::sqrt(ex * ex + ey * ey + ez * ez) +
-             4e-16 * (std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + 3.0);
-  }
+  double q[3], slack = 0.0;
+  float qf[3];
+  const bool cull = to_frame(p, q, qf, slack);
   const F4 pf[3] = {F4::splat(qf[0]), F4::splat(qf[1]), F4::splat(qf[2])};
 
   // Culling radii in the float frame, enlarged to cover the query's and the corners' rounding
@@ -456,8 +476,8 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
       const F4 s2 = max(dot3(m, cp), zero) / (sqrt(dot3(e2, e2)) * n_len);
       const F4 out = max(max(s0, s1), s2);
       const F4 bound2 = h * h + out * out;  // = lower bound^2
-      const F4 reach = abs(ap[0]) + abs(ap[1]) + abs(ap[2]) + abs(bp[0]) + abs(bp[1]) +
-                       abs(bp[2]) + abs(cp[0]) + abs(cp[1]) + abs(cp[2]);
+      const F4 reach = abs(ap[0]) + abs(ap[1]) + abs(ap[2]) + abs(bp[0]) + abs(bp[1]) + abs(bp[2]) +
+                       abs(cp[0]) + abs(cp[1]) + abs(cp[2]);
       const F4 margin = F4::load(leaf.margin) * reach;
       const F4 radius = F4::splat(leaf_limit) + margin;
       // Lanes whose bound exceeds the radius are out; NaN or infinite radii keep the lane.
@@ -475,8 +495,7 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
         const std::uint32_t f = leaf.face[lane];
         if (f == kNoFace || f == hint.start_face) continue;
         int j = count++;
-        for (; j > 0 && bound[lanes[j - 1]] > bound[lane]; --j)
-          lanes[j] = lanes[j - 1];
+        for (; j > 0 && bound[lanes[j - 1]] > bound[lane]; --j) lanes[j] = lanes[j - 1];
         lanes[j] = lane;
       }
       for (int k = 0; k < count; ++k) {
@@ -511,6 +530,346 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
   // Keep the candidates within the final tie limit, in face order (as the oracle does).
   detail::keep_ties(ties, limit);
   return std::sqrt(best_sq);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Batches of coherent queries (packets).
+
+struct TriangleBvh::PacketScratch {
+  // Four candidate faces' supporting planes in the float frame: unit normal n and offset d
+  // (h = n.p - d is the signed distance to the plane), and per edge the outward unit normal m_e
+  // within the plane and its offset (out_e = m_e.p - md_e is the distance beyond the edge's
+  // line). Computed in double, stored rounded to float. Faces the bound must not cull have all
+  // zeros (bound 0); empty lanes have d = -inf (bound +inf).
+  struct alignas(16) Planes {
+    float n[3][4];
+    float d[4];
+    float m[3][3][4];
+    float md[3][4];
+    std::uint32_t face[4];
+  };
+  double q[kPacketSize][3];
+  float qf[kPacketSize][3];
+  double slack[kPacketSize];
+  std::vector<std::uint32_t> faces;
+  std::vector<Planes> planes;
+  std::vector<float> bound;
+  std::vector<std::uint32_t> survivors;
+  std::vector<SurfaceHit> ties, center_ties;
+  std::vector<FacePlanes> cache;  // 2^kCacheBits slots, allocated with the first packet
+};
+
+const TriangleBvh::FacePlanes& TriangleBvh::face_planes(std::uint32_t face,
+                                                        PacketScratch& scratch) const {
+  if (scratch.cache.empty()) scratch.cache.resize(std::size_t{1} << kCacheBits);
+  FacePlanes& f = scratch.cache[(face * 0x9E3779B1u) >> (32 - kCacheBits)];
+  if (f.face == face) return f;
+  f = FacePlanes{};
+  f.face = face;
+  const TriMesh& mesh = *eval_.mesh;
+  Vec3 v[3];
+  for (int corner = 0; corner < 3; ++corner)
+    v[corner] = scale_ * (mesh.positions[mesh.faces[face][corner]] - origin_);
+  const Vec3 ab = v[1] - v[0], ac = v[2] - v[0];
+  const Vec3 nrm = cross(ab, ac);
+  const double n2 = squared_norm(nrm);
+  if (!(n2 >= kMinNormal2) || !(norm(ab) * norm(ac) <= kMaxKappa * std::sqrt(n2)))
+    return f;  // never culled: all zeros
+  const Vec3 unit = (1.0 / std::sqrt(n2)) * nrm;
+  const double offset = dot(unit, v[0]);
+  double max_offset = std::fabs(offset);
+  for (int a = 0; a < 3; ++a) f.n[a] = static_cast<float>(unit[a]);
+  f.d = static_cast<float>(offset);
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 outward = cross(v[(e + 1) % 3] - v[e], unit);  // in the plane
+    const Vec3 out_unit = (1.0 / norm(outward)) * outward;
+    const double out_offset = dot(out_unit, v[e]);
+    for (int a = 0; a < 3; ++a) f.m[e][a] = static_cast<float>(out_unit[a]);
+    f.md[e] = static_cast<float>(out_offset);
+    max_offset = std::max(max_offset, std::fabs(out_offset));
+  }
+  f.max_offset = round_up(max_offset);
+  return f;
+}
+
+void TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
+                             BatchHits& out) const {
+  out.distance.resize(count);
+  out.first.resize(count + 1);
+  out.hits.clear();
+  out.first[0] = 0;
+  out.packet_queries = 0;
+  PacketScratch scratch;
+  std::uint32_t previous = kNoFace;
+  auto single = [&](std::size_t i) {
+    QueryHint hint = hints != nullptr ? hints[i] : QueryHint{};
+    if (hint.start_face == kNoFace) hint.start_face = previous;
+    out.distance[i] = find(points[i], hint, scratch.ties);
+    out.hits.insert(out.hits.end(), scratch.ties.begin(), scratch.ties.end());
+    out.first[i + 1] = static_cast<std::uint32_t>(out.hits.size());
+    previous = scratch.ties.front().face;
+  };
+  const double max_diag2 = packet_extent_ * packet_extent_;
+  std::size_t i = 0;
+  while (i < count) {
+    // Grow a packet of consecutive queries while its box stays small.
+    std::size_t j = i;
+    float lo[3], hi[3];
+    for (; j < count && j - i < kPacketSize; ++j) {
+      const std::size_t k = j - i;
+      if (!to_frame(points[j], scratch.q[k], scratch.qf[k], scratch.slack[k])) break;
+      float nlo[3], nhi[3];
+      double diag2 = 0.0;
+      for (int a = 0; a < 3; ++a) {
+        nlo[a] = k == 0 ? scratch.qf[k][a] : std::min(lo[a], scratch.qf[k][a]);
+        nhi[a] = k == 0 ? scratch.qf[k][a] : std::max(hi[a], scratch.qf[k][a]);
+        diag2 += (static_cast<double>(nhi[a]) - nlo[a]) * (static_cast<double>(nhi[a]) - nlo[a]);
+      }
+      if (diag2 > max_diag2) break;
+      std::copy(nlo, nlo + 3, lo);
+      std::copy(nhi, nhi + 3, hi);
+    }
+    if (j == i) {  // beyond the float range, or alone in its box: on its own
+      single(i++);
+      continue;
+    }
+    if (j - i >= kMinPacket && find_packet(points, hints, i, j - i, previous, scratch, out)) {
+      previous = out.hits[out.first[j - 1]].face;
+      out.packet_queries += j - i;
+    } else {
+      for (std::size_t k = i; k < j; ++k) single(k);
+    }
+    i = j;
+  }
+}
+
+bool TriangleBvh::gather(const float lo[3], const float hi[3], double reach, std::size_t max_faces,
+                         std::vector<std::uint32_t>& faces) const {
+  faces.clear();
+  const F4 zero = F4::splat(0.0f);
+  const F4 qlo[3] = {F4::splat(lo[0]), F4::splat(lo[1]), F4::splat(lo[2])};
+  const F4 qhi[3] = {F4::splat(hi[0]), F4::splat(hi[1]), F4::splat(hi[2])};
+  // Squared box-to-box distances of four boxes; float rounding is relative (far below 1e-5).
+  auto box_gap2 = [&](const F4 blo[3], const F4 bhi[3]) {
+    F4 d2 = zero;
+    for (int k = 0; k < 3; ++k) {
+      const F4 d = max(max(blo[k] - qhi[k], qlo[k] - bhi[k]), zero);
+      d2 = d2 + d * d;
+    }
+    return d2;
+  };
+  const F4 limit2 = F4::splat(round_up(reach * reach * (1.0 + 1e-5)));
+  std::uint32_t stack[kStackSize];
+  int top = 0;
+  stack[top++] = root_;
+  while (top > 0) {
+    const std::uint32_t ref = stack[--top];
+    if ((ref & kLeafBit) != 0) {
+      const Leaf& leaf = leaves_[ref & ~kLeafBit];
+      F4 tlo[3], thi[3];
+      for (int k = 0; k < 3; ++k) {
+        const F4 a = F4::load(leaf.corner[0][k]), b = F4::load(leaf.corner[1][k]),
+                 c = F4::load(leaf.corner[2][k]);
+        tlo[k] = min(min(a, b), c);
+        thi[k] = max(max(a, b), c);
+      }
+      int keep = ~greater_mask(box_gap2(tlo, thi), limit2) & 0xf;
+      while (keep != 0) {
+        const int lane = __builtin_ctz(static_cast<unsigned>(keep));
+        keep &= keep - 1;
+        if (leaf.face[lane] == kNoFace) continue;
+        if (faces.size() == max_faces) return false;
+        faces.push_back(leaf.face[lane]);
+      }
+      continue;
+    }
+    const Node& node = nodes_[ref];
+    F4 blo[3], bhi[3];
+    for (int k = 0; k < 3; ++k) {
+      blo[k] = F4::load(node.lo[k]);
+      bhi[k] = F4::load(node.hi[k]);
+    }
+    int keep = ~greater_mask(box_gap2(blo, bhi), limit2) & 0xf;
+    while (keep != 0) {
+      const int k = __builtin_ctz(static_cast<unsigned>(keep));
+      keep &= keep - 1;
+      if (node.child[k] != kEmpty) stack[top++] = node.child[k];
+    }
+    assert(top <= kStackSize);
+  }
+  return true;
+}
+
+bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
+                              std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
+                              BatchHits& out) const {
+  assert(n >= 2 && n <= kPacketSize);
+  const QueryHint no_hint;
+  auto hint_of = [&](std::size_t k) -> const QueryHint& {
+    return hints != nullptr ? hints[base + k] : no_hint;
+  };
+  const double floor_dist = std::sqrt(eval_.exact_check_sq);
+
+  // The centre query, in full. Its distance bounds every other query's by the triangle
+  // inequality: d(p) <= d(c) + |p - c|.
+  const std::size_t c = n / 2;
+  QueryHint center_hint = hint_of(c);
+  if (center_hint.start_face == kNoFace) center_hint.start_face = start_face;
+  const double d_c = find(points[base + c], center_hint, scratch.center_ties);
+
+  // Each query's reach in the float frame: the tie limit of that upper bound (1e-9 more for the
+  // rounding of computed distances), at least the identical-triangle check's, plus the slack.
+  double separation[kPacketSize];
+  auto reach = [&](std::size_t k, double limit_sq) {
+    const double floor = hint_of(k).source != nullptr ? floor_dist : 0.0;
+    return std::max(std::sqrt(limit_sq), floor) * scale_ + scratch.slack[k];
+  };
+  auto initial_limit = [&](std::size_t k) {
+    const double upper = (d_c + separation[k]) * (1.0 + 1e-9);
+    return eval_.limit_sq(upper * upper);
+  };
+  double initial_reach[kPacketSize];
+  double packet_reach = 0.0;
+  float lo[3], hi[3];
+  for (std::size_t k = 0; k < n; ++k) {
+    separation[k] = norm(points[base + k] - points[base + c]);
+    initial_reach[k] = reach(k, initial_limit(k));
+    packet_reach = std::max(packet_reach, initial_reach[k]);
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = k == 0 ? scratch.qf[k][a] : std::min(lo[a], scratch.qf[k][a]);
+      hi[a] = k == 0 ? scratch.qf[k][a] : std::max(hi[a], scratch.qf[k][a]);
+    }
+  }
+  if (!std::isfinite(packet_reach) ||
+      !gather(lo, hi, packet_reach, kMaxCandidates, scratch.faces) || scratch.faces.empty())
+    return false;
+
+  // The candidates' planes, from the cache (consecutive packets share most of their faces).
+  const std::size_t candidates = scratch.faces.size();
+  scratch.planes.resize((candidates + 3) / 4);
+  float max_offset = 0.0f;
+  for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
+    PacketScratch::Planes& pl = scratch.planes[b];
+    for (int lane = 0; lane < 4; ++lane) {
+      const std::size_t idx = 4 * b + lane;
+      if (idx >= candidates) {  // empty lane: bound +inf
+        pl.face[lane] = kNoFace;
+        pl.d[lane] = -kInf;
+        for (int a = 0; a < 3; ++a) pl.n[a][lane] = 0.0f;
+        for (int e = 0; e < 3; ++e) {
+          pl.md[e][lane] = 0.0f;
+          for (int a = 0; a < 3; ++a) pl.m[e][a][lane] = 0.0f;
+        }
+        continue;
+      }
+      const std::uint32_t face = scratch.faces[idx];
+      const FacePlanes& f = face_planes(face, scratch);
+      max_offset = std::max(max_offset, f.max_offset);
+      pl.face[lane] = face;
+      pl.d[lane] = f.d;
+      for (int a = 0; a < 3; ++a) pl.n[a][lane] = f.n[a];
+      for (int e = 0; e < 3; ++e) {
+        pl.md[e][lane] = f.md[e];
+        for (int a = 0; a < 3; ++a) pl.m[e][a][lane] = f.m[e][a];
+      }
+    }
+  }
+
+  // Each query: float lower bounds sqrt(h^2 + max(out_e, 0)^2) of all candidates, then the
+  // survivors evaluated exactly, smallest bound first, until the bound passes the tie limit.
+  // The bound's rounding is at most about 6 u (|p|_1 + max offset) (coefficients rounded to
+  // float, three products and sums) plus 1e-9 (|p|_1 + 2) from the double computation of
+  // normals of faces with kappa <= kMaxKappa: the margin 16 u (|p|_1 + max offset + 2) covers
+  // both with room.
+  scratch.bound.resize(4 * scratch.planes.size());
+  const F4 zero = F4::splat(0.0f);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k == c) {
+      out.distance[base + k] = d_c;
+      out.hits.insert(out.hits.end(), scratch.center_ties.begin(), scratch.center_ties.end());
+      out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
+      continue;
+    }
+    const float* qf = scratch.qf[k];
+    const QueryHint& hint = hint_of(k);
+    const Vec3& p = points[base + k];
+    const double margin =
+        16.0 * kUnit * (std::fabs(qf[0]) + std::fabs(qf[1]) + std::fabs(qf[2]) + max_offset + 2.0);
+    auto cutoff_of = [&](double r) {  // r: a reach
+      return round_up((r + margin) * (r + margin) * (1.0 + 1e-5));
+    };
+    const F4 px = F4::splat(qf[0]), py = F4::splat(qf[1]), pz = F4::splat(qf[2]);
+    // All bounds, and the smallest (NaN bounds become 0: evaluated first, never culled).
+    F4 smallest = F4::splat(kInf);
+    for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
+      const PacketScratch::Planes& pl = scratch.planes[b];
+      auto plane = [&](const float nx[4], const float ny[4], const float nz[4], const float* d) {
+        return F4::load(nx) * px + F4::load(ny) * py + F4::load(nz) * pz - F4::load(d);
+      };
+      const F4 h = plane(pl.n[0], pl.n[1], pl.n[2], pl.d);
+      const F4 o0 = plane(pl.m[0][0], pl.m[0][1], pl.m[0][2], pl.md[0]);
+      const F4 o1 = plane(pl.m[1][0], pl.m[1][1], pl.m[1][2], pl.md[1]);
+      const F4 o2 = plane(pl.m[2][0], pl.m[2][1], pl.m[2][2], pl.md[2]);
+      const F4 o = max(max(max(o0, o1), o2), zero);
+      const F4 b2 = max(h * h + o * o, zero);  // NaN -> 0 (max returns its second operand)
+      smallest = min(b2, smallest);
+      simd::store(scratch.bound.data() + 4 * b, b2);
+    }
+    float least[4];
+    simd::store(least, smallest);
+    const float first_bound = std::min({least[0], least[1], least[2], least[3]});
+    std::size_t first_idx = 0;
+    for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
+      const int equal =
+          simd::equal_mask(F4::load(scratch.bound.data() + 4 * b), F4::splat(first_bound));
+      if (equal != 0) {
+        first_idx = 4 * b + static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(equal)));
+        break;
+      }
+    }
+
+    // The face of smallest bound first: its exact distance gives the tie limit, usually final.
+    std::vector<SurfaceHit>& ties = scratch.ties;
+    ties.clear();
+    SurfaceHit first = eval_.evaluate(p, scratch.faces[first_idx], hint);
+    double best_sq = first.sq_distance;
+    double limit = eval_.limit_sq(best_sq);
+    ties.push_back(first);
+    float cutoff = cutoff_of(std::min(initial_reach[k], reach(k, limit)));
+    const F4 cut = F4::splat(cutoff);
+    scratch.survivors.clear();
+    for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
+      int keep = ~greater_mask(F4::load(scratch.bound.data() + 4 * b), cut) & 0xf;
+      while (keep != 0) {
+        const int lane = __builtin_ctz(static_cast<unsigned>(keep));
+        keep &= keep - 1;
+        const auto idx = static_cast<std::uint32_t>(4 * b + lane);
+        if (idx != first_idx) scratch.survivors.push_back(idx);
+      }
+    }
+    std::size_t left = scratch.survivors.size();
+    while (left > 0) {
+      std::size_t pick = 0;
+      for (std::size_t s = 1; s < left; ++s)
+        if (scratch.bound[scratch.survivors[s]] < scratch.bound[scratch.survivors[pick]]) pick = s;
+      const std::uint32_t idx = scratch.survivors[pick];
+      if (scratch.bound[idx] > cutoff) break;
+      scratch.survivors[pick] = scratch.survivors[--left];
+      const SurfaceHit h = eval_.evaluate(p, scratch.faces[idx], hint);
+      if (h.sq_distance > limit) continue;
+      if (h.sq_distance < best_sq) {
+        best_sq = h.sq_distance;
+        limit = eval_.limit_sq(best_sq);
+        cutoff = std::min(cutoff, cutoff_of(reach(k, limit)));
+      }
+      ties.push_back(h);
+    }
+    detail::keep_ties(ties, limit);
+    out.distance[base + k] = std::sqrt(best_sq);
+    out.hits.insert(out.hits.end(), ties.begin(), ties.end());
+    out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
+  }
+  return true;
 }
 
 }  // namespace meshdev

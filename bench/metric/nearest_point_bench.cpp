@@ -4,6 +4,8 @@
 // coarser or finer icosphere, in generation order (face by face, as compare does).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+
 #include "metric/attribute_deviation.h"
 #include "metric/attributes.h"
 #include "metric/nearest_point.h"
@@ -35,8 +37,8 @@ void BM_BvhBuild(benchmark::State& state) {
     benchmark::DoNotOptimize(bvh.node_count());
   }
   state.counters["faces"] = static_cast<double>(target.num_faces());
-  state.counters["bytes_per_face"] =
-      static_cast<double>(TriangleBvh(target).memory_bytes()) / static_cast<double>(target.num_faces());
+  state.counters["bytes_per_face"] = static_cast<double>(TriangleBvh(target).memory_bytes()) /
+                                     static_cast<double>(target.num_faces());
 }
 BENCHMARK(BM_BvhBuild)->Arg(5)->Arg(6)->Arg(7)->Unit(benchmark::kMillisecond);
 
@@ -58,6 +60,30 @@ void BM_NearestQuery(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
 }
 BENCHMARK(BM_NearestQuery)->Args({5, 7})->Args({7, 5})->Args({7, 7});
+
+// The same queries in batches of 1024 (find_batch: coherent runs answered in packets), one
+// thread; counter packet_share = fraction of queries answered in packets.
+void BM_NearestBatch(benchmark::State& state) {
+  const TriMesh& target = sphere(static_cast<int>(state.range(0)));
+  TriangleBvh bvh(target);
+  const SampleSet s = samples_on(static_cast<int>(state.range(1)), 200000);
+  std::vector<Vec3> points;
+  for (const Sample& x : s.samples) points.push_back(x.point);
+  constexpr std::size_t kBatch = 1024;
+  BatchHits batch;
+  std::size_t i = 0, queries = 0, in_packets = 0;
+  for (auto _ : state) {
+    const std::size_t count = std::min(kBatch, points.size() - i);
+    bvh.find_batch(points.data() + i, nullptr, count, batch);
+    benchmark::DoNotOptimize(batch.distance.data());
+    queries += count;
+    in_packets += batch.packet_queries;
+    i = (i + count) % points.size();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(queries));
+  state.counters["packet_share"] = static_cast<double>(in_packets) / static_cast<double>(queries);
+}
+BENCHMARK(BM_NearestBatch)->Args({5, 7})->Args({7, 5})->Args({7, 7});
 
 // The whole per-sample loop (closest point, ties, geometry + normal measures) on 1M samples,
 // by thread count.

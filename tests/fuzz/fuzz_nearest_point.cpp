@@ -1,6 +1,7 @@
 // libFuzzer target: bytes -> a small valid-but-weird mesh (degenerate, duplicate, non-manifold
 // triangles, extreme coordinates) and query points -> the BVH, the grid and the brute-force
-// oracle. They must return bit-identical distances and tie sets, and nothing may be NaN.
+// oracle, one query at a time and as a batch (find_batch). They must return bit-identical
+// distances and tie sets, and nothing may be NaN.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -73,6 +74,34 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(db == df && dg == df, "BVH, grid and brute force disagree on the distance");
     require(same(hb, hf), "BVH and brute force disagree on the ties");
     require(same(hg, hf), "grid and brute force disagree on the ties");
+  }
+
+  // The same queries as one batch, each followed by 9 near copies (steps of 1e-4 of the mesh's
+  // bounding box), so that the BVH answers runs of them in packets (find_batch): every answer
+  // must still be the oracle's.
+  const double step = 1e-4 * meshdev::bounding_box(mesh).diagonal();
+  std::vector<meshdev::Vec3> points, corners;
+  std::vector<meshdev::QueryHint> hints;
+  for (std::size_t q = 0; q < queries.size(); ++q)
+    for (int j = 0; j < 10; ++j) {
+      points.push_back(queries[q] + (j * step) * meshdev::Vec3{1.0, -1.0, 0.5});
+      const meshdev::Triangle& t = mesh.faces[q % mesh.num_faces()];
+      for (int c = 0; c < 3; ++c) corners.push_back(mesh.positions[t[c]]);
+      hints.emplace_back();
+    }
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((i / 10) % 3 == 1) {  // corners no longer move
+      hints[i].source = &corners[3 * i];
+      hints[i].source_bary = {1, 0, 0};
+    }
+  meshdev::BatchHits batch;
+  bvh->find_batch(points.data(), hints.data(), points.size(), batch);
+  require(batch.size() == points.size(), "find_batch answered a different number of queries");
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double df = brute->find(points[i], hints[i], hf);
+    hb.assign(batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i));
+    require(batch.distance[i] == df, "BVH batch and brute force disagree on the distance");
+    require(same(hb, hf), "BVH batch and brute force disagree on the ties");
   }
   return 0;
 }

@@ -150,11 +150,21 @@ TEST(NearestPoint, BvhFloatCullingNeverChangesTheAnswer) {
                           b * (m.positions[t[2]] - m.positions[t[0]]);
           const Vec3 dir{s(rng), s(rng), s(rng)};
           switch (q % 5) {
-            case 0: p = on; break;                                        // on a face
-            case 1: p = on + 1e-9 * scale * dir; break;                   // a hair off it
-            case 2: p = m.positions[t[q % 3]] + 1e-12 * scale * dir; break;  // at a corner
-            case 3: p = offset * Vec3{1, 1, 1} + scale * (1.5 * dir); break;  // anywhere near
-            default: p = offset * Vec3{1, 1, 1} + 1e13 * scale * dir; break;  // culling off
+            case 0:
+              p = on;
+              break;  // on a face
+            case 1:
+              p = on + 1e-9 * scale * dir;
+              break;  // a hair off it
+            case 2:
+              p = m.positions[t[q % 3]] + 1e-12 * scale * dir;
+              break;  // at a corner
+            case 3:
+              p = offset * Vec3{1, 1, 1} + scale * (1.5 * dir);
+              break;  // anywhere near
+            default:
+              p = offset * Vec3{1, 1, 1} + 1e13 * scale * dir;
+              break;  // culling off
           }
           QueryHint hint;
           hint.start_face = previous;
@@ -250,6 +260,140 @@ TEST(NearestPoint, SourceHintMakesASampleOnAnIdenticalTriangleExactlyZero) {
   ASSERT_EQ(ties.size(), 1u);
   EXPECT_EQ(ties[0].face, 3u);
   EXPECT_EQ(ties[0].bary, hint.source_bary);
+}
+
+// Query streams for the batch tests, coherent as samples are: runs of 32 points on one face of
+// `m` (random barycentrics), then pushed off it by `offset` (0: on the surface) in a random
+// direction; one in 10 is exactly at a corner of the face; every 7th run is scattered over the
+// bounding box instead, and one query in 50 is 1e13 mesh sizes away (culling off). With `hinted`,
+// on-surface points carry their face as the source-triangle hint (distance exactly 0 on an
+// identical target face).
+struct QueryStream {
+  std::vector<Vec3> points;
+  std::vector<Vec3> corners;  // 3 per query
+  std::vector<QueryHint> hints;
+};
+QueryStream coherent_queries(const TriMesh& m, std::uint64_t seed, int runs, double offset,
+                             bool hinted) {
+  QueryStream qs;
+  std::vector<bool> on_source;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), s(-1.0, 1.0);
+  const BoundingBox box = bounding_box(m);
+  const double size = box.diagonal();
+  for (int r = 0; r < runs; ++r) {
+    const std::uint32_t f = static_cast<std::uint32_t>(rng() % m.faces.size());
+    const Triangle& t = m.faces[f];
+    for (int k = 0; k < 32; ++k) {
+      double a = u(rng), b = u(rng);
+      if (a + b > 1) a = 1 - a, b = 1 - b;
+      Vec3 p = m.positions[t[0]] + a * (m.positions[t[1]] - m.positions[t[0]]) +
+               b * (m.positions[t[2]] - m.positions[t[0]]);
+      QueryHint hint;
+      if (r % 7 == 6) {
+        p = {box.min.x + u(rng) * (box.max.x - box.min.x),
+             box.min.y + u(rng) * (box.max.y - box.min.y),
+             box.min.z + u(rng) * (box.max.z - box.min.z)};
+      } else if (k % 50 == 49) {
+        p = p + 1e13 * size * Vec3{s(rng), s(rng), s(rng)};
+      } else if (k % 10 == 3) {  // exactly at a corner: a tie with every face around it
+        p = m.positions[t[k % 3]];
+        a = k % 3 == 1 ? 1.0 : 0.0;
+        b = k % 3 == 2 ? 1.0 : 0.0;
+      } else if (offset > 0.0) {
+        p = p + offset * Vec3{s(rng), s(rng), s(rng)};
+      }
+      const bool source = hinted && r % 7 != 6 && k % 50 != 49 && (offset == 0.0 || k % 10 == 3);
+      if (source) hint.source_bary = {1.0 - a - b, a, b};
+      on_source.push_back(source);
+      qs.points.push_back(p);
+      for (int c = 0; c < 3; ++c) qs.corners.push_back(m.positions[t[c]]);
+      qs.hints.push_back(hint);
+    }
+  }
+  for (std::size_t i = 0; i < qs.hints.size(); ++i)  // corners no longer move
+    if (on_source[i]) qs.hints[i].source = &qs.corners[3 * i];
+  return qs;
+}
+
+// find_batch must give every query exactly the oracle's answer (distance, ties, barycentrics,
+// features) whether it is answered in a packet or alone. Returns how many went through packets.
+std::size_t expect_batch_is_the_oracle(const TriMesh& m, const QueryStream& qs,
+                                       const std::string& what) {
+  const TriangleBvh bvh(m);
+  const NearestPointBrute brute(m);
+  BatchHits batch;
+  bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch);
+  EXPECT_EQ(batch.size(), qs.points.size());
+  std::vector<SurfaceHit> tf;
+  for (std::size_t i = 0; i < qs.points.size(); ++i) {
+    QueryHint hint = qs.hints[i];
+    const double df = brute.find(qs.points[i], hint, tf);
+    EXPECT_EQ(batch.distance[i], df) << what << " query " << i;
+    const std::vector<SurfaceHit> tb(batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i));
+    expect_same(tb, tf);
+    if (::testing::Test::HasFailure()) return batch.packet_queries;
+  }
+  return batch.packet_queries;
+}
+
+TEST(NearestPoint, BvhBatchEqualsBruteForceOnCoherentQueries) {
+  const TriMesh sphere = test::icosphere(4);
+  for (double offset : {0.0, 1e-9, 1e-3, 2e-2, 0.3}) {
+    for (bool hinted : {false, true}) {
+      const QueryStream qs = coherent_queries(sphere, 17, 60, offset, hinted);
+      const std::size_t packets = expect_batch_is_the_oracle(
+          sphere, qs, "offset " + std::to_string(offset) + (hinted ? " hinted" : ""));
+      // Runs that stay near one small face must go through the packet path (farther spread
+      // runs are answered one by one, which is checked above all the same).
+      if (offset <= 1e-3) EXPECT_GT(packets, qs.points.size() / 16) << "offset " << offset;
+    }
+  }
+}
+
+TEST(NearestPoint, BvhBatchEqualsBruteForceOnSoupsAndStressMeshes) {
+  std::size_t packets = 0, queries = 0;
+  for (std::uint64_t seed : {31u, 32u}) {
+    const TriMesh soup = test::random_soup(300, seed);
+    const QueryStream qs = coherent_queries(soup, seed, 40, 1e-2, true);
+    packets += expect_batch_is_the_oracle(soup, qs, "soup " + std::to_string(seed));
+    queries += qs.points.size();
+    for (double scale : {1e-6, 1.0, 1e6})
+      for (double offset : {0.0, 1e8}) {
+        const TriMesh m = stress_mesh(seed, scale, offset);
+        for (double off : {0.0, 1e-9 * scale, 1e-2 * scale}) {
+          const QueryStream qs2 = coherent_queries(m, seed + 7, 30, off, true);
+          packets += expect_batch_is_the_oracle(m, qs2,
+                                                "stress scale " + std::to_string(scale) +
+                                                    " offset " + std::to_string(offset) + " off " +
+                                                    std::to_string(off));
+          queries += qs2.points.size();
+          if (HasFailure()) return;
+        }
+      }
+  }
+  EXPECT_GT(packets, queries / 10);
+}
+
+// A batch without hints, and the default find_batch (brute force, grid) against find().
+TEST(NearestPoint, FindBatchWithoutHintsAndTheDefaultLoopAgreeWithFind) {
+  const TriMesh sphere = test::icosphere(3);
+  const QueryStream qs = coherent_queries(sphere, 3, 30, 1e-3, false);
+  const TriangleBvh bvh(sphere);
+  const TriangleGrid grid(sphere);
+  const NearestPointBrute brute(sphere);
+  std::vector<SurfaceHit> tf;
+  for (const NearestPointIndex* index :
+       std::initializer_list<const NearestPointIndex*>{&bvh, &grid, &brute}) {
+    BatchHits batch;
+    index->find_batch(qs.points.data(), nullptr, qs.points.size(), batch);
+    ASSERT_EQ(batch.size(), qs.points.size());
+    for (std::size_t i = 0; i < qs.points.size(); ++i) {
+      ASSERT_EQ(batch.distance[i], brute.find(qs.points[i], {}, tf)) << index->name() << " " << i;
+      expect_same({batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i)}, tf);
+    }
+    EXPECT_EQ(batch.packet_queries > 0, index == &bvh) << index->name();
+  }
 }
 
 TEST(NearestPoint, TargetWithoutFacesIsRejected) {
