@@ -827,6 +827,7 @@ bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::s
         break;
       }
     }
+    if (first_idx >= candidates) first_idx = 0;  // every bound infinite: any face will do
 
     // The face of smallest bound first: its exact distance gives the tie limit, usually final.
     std::vector<SurfaceHit>& ties = scratch.ties;
@@ -844,7 +845,7 @@ bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::s
         const int lane = __builtin_ctz(static_cast<unsigned>(keep));
         keep &= keep - 1;
         const auto idx = static_cast<std::uint32_t>(4 * b + lane);
-        if (idx != first_idx) scratch.survivors.push_back(idx);
+        if (idx != first_idx && idx < candidates) scratch.survivors.push_back(idx);
       }
     }
     std::size_t left = scratch.survivors.size();

@@ -375,6 +375,35 @@ TEST(NearestPoint, BvhBatchEqualsBruteForceOnSoupsAndStressMeshes) {
   EXPECT_GT(packets, queries / 10);
 }
 
+// Found by fuzz_nearest_point: an unreferenced vertex at 1e100 makes the identical-triangle
+// check reach 1e-14 x 1e100 (FaceEvaluator), so a query with a source hint has a reach whose
+// square overflows float: nothing can be culled, and the packet's padding lanes (a block of 4
+// holding one face) passed the cut and were read as faces (heap overflow under ASan).
+TEST(NearestPoint, BvhBatchNeverTakesPaddingLanesForFaces) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1e100, 0, 0}};
+  m.faces = {{0, 1, 2}};
+  const TriangleBvh bvh(m);
+  const NearestPointBrute brute(m);
+  const Vec3 corners[3] = {m.positions[0], m.positions[1], m.positions[2]};
+  std::vector<Vec3> points;
+  std::vector<QueryHint> hints(64);
+  for (int k = 0; k < 64; ++k) {
+    const double a = 1e-3 * k, b = 2e-3 * k;
+    points.push_back({a, b, 0.0});
+    hints[k].source = corners;
+    hints[k].source_bary = {1.0 - a - b, a, b};
+  }
+  BatchHits batch;
+  bvh.find_batch(points.data(), hints.data(), points.size(), batch);
+  EXPECT_GT(batch.packet_queries, 0u);
+  std::vector<SurfaceHit> tf;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(batch.distance[i], brute.find(points[i], hints[i], tf)) << i;
+    expect_same({batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i)}, tf);
+  }
+}
+
 // A batch without hints, and the default find_batch (brute force, grid) against find().
 TEST(NearestPoint, FindBatchWithoutHintsAndTheDefaultLoopAgreeWithFind) {
   const TriMesh sphere = test::icosphere(3);
