@@ -711,7 +711,7 @@ bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::s
   const double floor_dist = std::sqrt(eval_.exact_check_sq);
 
   // The centre query, in full. Its distance bounds every other query's by the triangle
-  // inequality: d(p) <= d(c) + |p - c|.
+  // inequality: d(p) <= d(c) + |p - c| (d: geometric distances).
   const std::size_t c = n / 2;
   QueryHint center_hint = hint_of(c);
   if (center_hint.start_face == kNoFace) center_hint.start_face = start_face;
@@ -724,8 +724,12 @@ bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::s
     const double floor = hint_of(k).source != nullptr ? floor_dist : 0.0;
     return std::max(std::sqrt(limit_sq), floor) * scale_ + scratch.slack[k];
   };
+  // The centre's distance may be 0 by the identical-triangle rule while it lies up to that
+  // check's reach from B (FaceEvaluator::evaluate): its geometric distance is at most d_c plus
+  // that reach, and only geometric distances obey the triangle inequality.
+  const double center_geometric = d_c + (hint_of(c).source != nullptr ? floor_dist : 0.0);
   auto initial_limit = [&](std::size_t k) {
-    const double upper = (d_c + separation[k]) * (1.0 + 1e-9);
+    const double upper = (center_geometric + separation[k]) * (1.0 + 1e-9);
     return eval_.limit_sq(upper * upper);
   };
   double initial_reach[kPacketSize];

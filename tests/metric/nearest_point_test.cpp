@@ -404,6 +404,36 @@ TEST(NearestPoint, BvhBatchNeverTakesPaddingLanesForFaces) {
   }
 }
 
+// Found by fuzz_nearest_point: the identical-triangle rule gives a hinted query distance 0 while
+// it lies up to that check's reach from its triangle (here 1e86: an unreferenced vertex at 1e100
+// sets the reach), so a packet centre answered by the rule does not bound its neighbours by
+// the triangle inequality; its geometric distance (0 + the reach) does.
+TEST(NearestPoint, BvhBatchBoundsNeighboursByTheCentresGeometricDistance) {
+  TriMesh m;
+  // The triangle, an unreferenced far vertex, and a zero-area face (never culled: it is
+  // evaluated first and sets a loose limit) 3 away.
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1e100, 0, 0}, {2, 2, 2}, {2, 2, 2}, {3, 3, 3}};
+  m.faces = {{0, 1, 2}, {4, 5, 6}};
+  const TriangleBvh bvh(m);
+  const NearestPointBrute brute(m);
+  const Vec3 corners[3] = {m.positions[0], m.positions[1], m.positions[2]};
+  std::vector<Vec3> points;
+  std::vector<QueryHint> hints(64);
+  for (int k = 0; k < 64; ++k) points.push_back({0.2 + 1e-3 * k, 0.2, 0.3});  // 0.3 above
+  hints[32].source = corners;  // the packet's centre: distance 0 by the rule
+  hints[32].source_bary = {0.6 - 1e-3 * 32, 0.2 + 1e-3 * 32, 0.2};
+  BatchHits batch;
+  bvh.find_batch(points.data(), hints.data(), points.size(), batch);
+  EXPECT_GT(batch.packet_queries, 0u);
+  std::vector<SurfaceHit> tf;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_EQ(batch.distance[i], brute.find(points[i], hints[i], tf)) << i;
+    expect_same({batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i)}, tf);
+  }
+  EXPECT_EQ(batch.distance[32], 0.0);
+  EXPECT_NEAR(batch.distance[0], 0.3, 1e-12);
+}
+
 // A batch without hints, and the default find_batch (brute force, grid) against find().
 TEST(NearestPoint, FindBatchWithoutHintsAndTheDefaultLoopAgreeWithFind) {
   const TriMesh sphere = test::icosphere(3);
