@@ -44,6 +44,11 @@ constexpr double kMaxKappa = 1e6;  // slivers beyond this are never culled by th
 // the margin (>= 64 u 2 |e| >= 3e-16).
 constexpr double kMinNormal2 = 1e-20;
 constexpr double kMaxQuery = 1e12;  // queries farther out (float frame) are never culled
+// Meshes whose largest half extent is outside [kMinExtent, kMaxExtent] (absolute units) are never
+// culled: their squared distances leave double's normal range (found by fuzz_nearest_point:
+// faces 1e-300 apart all tie at a squared distance of 0 underflowed).
+constexpr double kMinExtent = 1e-140;
+constexpr double kMaxExtent = 1e140;
 
 // Packets (find_batch): at most kPacketSize consecutive queries whose box diagonal is at most
 // kPacketExtent mean longest edges of the target's faces; fewer than kMinPacket are answered one
@@ -157,6 +162,10 @@ void TriangleBvh::build(int threads) {
   const Vec3 half = 0.5 * (bbox.max - bbox.min);
   const double extent = std::max({half.x, half.y, half.z});
   scale_ = extent > 0.0 && std::isfinite(1.0 / extent) ? 1.0 / extent : 1.0;
+  // Squared distances in double underflow (or overflow) for meshes this small (or large), so
+  // faces far apart in the frame can tie at a squared distance of 0 (or infinity) in the
+  // oracle's arithmetic: such meshes are searched without culling.
+  cull_scale_ = extent >= kMinExtent && extent <= kMaxExtent;
   const int team = threads > 0 ? threads : omp_get_max_threads();
   const auto vertices = static_cast<std::int64_t>(m.positions.size());
   std::vector<std::array<double, 3>> frame(m.positions.size());
@@ -382,7 +391,7 @@ bool TriangleBvh::to_frame(const Vec3& p, double q[3], float qf[3], double& slac
     q[k] = (p[k] - origin_[k]) * scale_;
     qf[k] = static_cast<float>(q[k]);
   }
-  const bool cull = std::fabs(q[0]) < kMaxQuery && std::fabs(q[1]) < kMaxQuery &&
+  const bool cull = cull_scale_ && std::fabs(q[0]) < kMaxQuery && std::fabs(q[1]) < kMaxQuery &&
                     std::fabs(q[2]) < kMaxQuery;  // false for NaN
   slack = corner_error_;
   if (cull) {

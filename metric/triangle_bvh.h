@@ -20,7 +20,8 @@
 //   supporting plane and to the edge half-planes) gets a margin 64 u (2 + kappa) (|ap|+|bp|+|cp|)
 //   that covers its rounding error (u = 2^-24, kappa = |ab||ac| / |ab x ac|; offsets are
 //   normalised before squaring, so nothing that matters underflows); slivers (kappa > 1e6),
-//   triangles under ~1e-5 of the mesh and queries beyond 1e12 mesh sizes are never culled by it.
+//   triangles under ~1e-5 of the mesh and queries beyond 1e12 mesh sizes are never culled by it;
+//   meshes under 1e-140 or over 1e140 in size are searched without culling (double underflow).
 // Batches (find_batch): consecutive queries within about kPacketExtent typical triangles of each
 //        other form a packet of up to 64. The packet's centre query runs as above and gives every
 //        other query an upper bound (triangle inequality); one traversal with the packet's box
@@ -101,6 +102,7 @@ class TriangleBvh final : public NearestPointIndex {
   detail::FaceEvaluator eval_;
   Vec3 origin_;               // centre of the target's bounding box
   double scale_ = 1;          // float frame = (x - origin_) * scale_
+  bool cull_scale_ = true;    // false: the mesh is too small or large to cull (see kMinExtent)
   double corner_error_ = 0;   // max |float corner - exact corner| in the float frame
   double packet_extent_ = 0;  // largest packet box diagonal (float frame) for find_batch
   std::uint32_t root_ = 0;    // child ref of the root

@@ -434,6 +434,33 @@ TEST(NearestPoint, BvhBatchBoundsNeighboursByTheCentresGeometricDistance) {
   EXPECT_NEAR(batch.distance[0], 0.3, 1e-12);
 }
 
+// Found by fuzz_nearest_point: in a mesh 1e-300 wide every squared distance underflows to 0, so
+// in the oracle's arithmetic all faces tie, though the scaled float frame sees them far apart.
+// Such meshes (and ones over 1e140) are searched without culling.
+TEST(NearestPoint, BvhDoesNotCullWhereSquaredDistancesUnderflow) {
+  for (double size : {1e-300, 1e-200, 1e200}) {
+    TriMesh m;
+    m.positions = {{0, 0, 0}, {size, size, size}, {size, 0, 0}, {0, size, 0}};
+    for (int k = 0; k < 12; ++k) m.faces.push_back({1, 1, 1});  // points at the far corner
+    m.faces.push_back({0, 2, 3});
+    const TriangleBvh bvh(m);
+    const NearestPointBrute brute(m);
+    std::vector<SurfaceHit> tb, tf;
+    std::vector<Vec3> points;
+    for (int k = 0; k < 16; ++k) points.push_back({0.0, 0.0, 1e-3 * k * size});
+    for (const Vec3& p : points) {
+      ASSERT_EQ(bvh.find(p, {}, tb), brute.find(p, {}, tf)) << size;
+      expect_same(tb, tf);
+    }
+    BatchHits batch;
+    bvh.find_batch(points.data(), nullptr, points.size(), batch);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      ASSERT_EQ(batch.distance[i], brute.find(points[i], {}, tf)) << size;
+      expect_same({batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i)}, tf);
+    }
+  }
+}
+
 // A batch without hints, and the default find_batch (brute force, grid) against find().
 TEST(NearestPoint, FindBatchWithoutHintsAndTheDefaultLoopAgreeWithFind) {
   const TriMesh sphere = test::icosphere(3);
