@@ -121,59 +121,66 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
         points[i - begin] = samples.samples[i].point;
         hints[i - begin] = sample_hint(ref, samples.samples[i], &corners[3 * (i - begin)]);
       }
-      index.find_batch(points.data(), hints.data(), end - begin, batch);
-      for (std::size_t i = begin; i < end; ++i) {
-        const Sample& s = samples.samples[i];
-        const TieRange ties{batch.ties_begin(i - begin), batch.tie_count(i - begin)};
-        assert(ties.size() > 0);
-        if (options.keep_nearest) out.nearest[i] = ties.front();
-        out.nearest_feature[i] = ties.front().feature;
-        out.tie_count[i] = static_cast<std::uint32_t>(ties.size());
-        out.values[0][i] = batch.distance[i - begin];
+      // A batch may stop early (BatchHits::kMaxHits ties held); the rest goes in the next one.
+      for (std::size_t from = begin; from < end;) {
+        const std::size_t to =
+            from + index.find_batch(points.data() + (from - begin), hints.data() + (from - begin),
+                                    end - from, batch);
+        for (std::size_t i = from; i < to; ++i) {
+          const Sample& s = samples.samples[i];
+          const TieRange ties{batch.ties_begin(i - from), batch.tie_count(i - from)};
+          assert(ties.size() > 0);
+          if (options.keep_nearest) out.nearest[i] = ties.front();
+          out.nearest_feature[i] = ties.front().feature;
+          out.tie_count[i] = static_cast<std::uint32_t>(ties.size());
+          out.values[0][i] = batch.distance[i - from];
 
-        for (const ChannelGroup& g : groups) {
-          interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
-          if (ties.size() == 1) {  // the common case: no minimum to take
-            interpolate(*g.target, tgt, ties[0].face, ties[0].bary, kNoFace, fb);
+          for (const ChannelGroup& g : groups) {
+            interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
+            if (ties.size() == 1) {  // the common case: no minimum to take
+              interpolate(*g.target, tgt, ties[0].face, ties[0].bary, kNoFace, fb);
+              for (std::size_t k = 0; k < g.measures.size(); ++k)
+                out.values[g.measures[k]][i] =
+                    attribute_distance(g.kinds[k], fa, fb, g.reference->dim);
+              continue;
+            }
+            best.assign(g.measures.size(), std::numeric_limits<double>::infinity());
+            for (const SurfaceHit& h : ties) {
+              interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
+              for (std::size_t k = 0; k < g.measures.size(); ++k)
+                best[k] = std::min(best[k], attribute_distance(measures[g.measures[k]].kind, fa, fb,
+                                                               g.reference->dim));
+            }
             for (std::size_t k = 0; k < g.measures.size(); ++k)
-              out.values[g.measures[k]][i] =
-                  attribute_distance(g.kinds[k], fa, fb, g.reference->dim);
-            continue;
+              out.values[g.measures[k]][i] = best[k];
           }
-          best.assign(g.measures.size(), std::numeric_limits<double>::infinity());
-          for (const SurfaceHit& h : ties) {
-            interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
-            for (std::size_t k = 0; k < g.measures.size(); ++k)
-              best[k] = std::min(best[k], attribute_distance(measures[g.measures[k]].kind, fa, fb,
-                                                             g.reference->dim));
-          }
-          for (std::size_t k = 0; k < g.measures.size(); ++k)
-            out.values[g.measures[k]][i] = best[k];
-        }
 
-        if (cohen.empty() && texture.empty()) continue;
-        double uv[2];
-        interpolate(*uv_ref, ref, s.face, s.bary, s.vertex, uv);
-        if (!cohen.empty()) {  // p'' = the point of B with p's UV (Eq. 2)
-          const CohenResult c =
-              cohen_texture_deviation(s.point, uv[0], uv[1], tgt, *uv_index, same_point, uv_hits);
-          for (std::size_t m : cohen) out.values[m][i] = c.distance;
-          out.cohen_case[i] = static_cast<std::uint8_t>(c.kind);
-          uv_gap[i] = c.uv_gap;
-        }
-        if (!texture.empty()) {  // texture colours at the UVs of p and p', minimum over ties
-          const Vec3 ca = sample_bilinear(*reference.texture, uv[0], uv[1]);
-          const double ta[3] = {ca.x, ca.y, ca.z};
-          best.assign(texture.size(), std::numeric_limits<double>::infinity());
-          for (const SurfaceHit& h : ties) {
-            interpolate(*uv_tgt, tgt, h.face, h.bary, kNoFace, fb);
-            const Vec3 cb = sample_bilinear(*target.texture, fb[0], fb[1]);
-            const double tb[3] = {cb.x, cb.y, cb.z};
-            for (std::size_t k = 0; k < texture.size(); ++k)
-              best[k] = std::min(best[k], attribute_distance(measures[texture[k]].kind, ta, tb, 3));
+          if (cohen.empty() && texture.empty()) continue;
+          double uv[2];
+          interpolate(*uv_ref, ref, s.face, s.bary, s.vertex, uv);
+          if (!cohen.empty()) {  // p'' = the point of B with p's UV (Eq. 2)
+            const CohenResult c =
+                cohen_texture_deviation(s.point, uv[0], uv[1], tgt, *uv_index, same_point, uv_hits);
+            for (std::size_t m : cohen) out.values[m][i] = c.distance;
+            out.cohen_case[i] = static_cast<std::uint8_t>(c.kind);
+            uv_gap[i] = c.uv_gap;
           }
-          for (std::size_t k = 0; k < texture.size(); ++k) out.values[texture[k]][i] = best[k];
+          if (!texture.empty()) {  // texture colours at the UVs of p and p', minimum over ties
+            const Vec3 ca = sample_bilinear(*reference.texture, uv[0], uv[1]);
+            const double ta[3] = {ca.x, ca.y, ca.z};
+            best.assign(texture.size(), std::numeric_limits<double>::infinity());
+            for (const SurfaceHit& h : ties) {
+              interpolate(*uv_tgt, tgt, h.face, h.bary, kNoFace, fb);
+              const Vec3 cb = sample_bilinear(*target.texture, fb[0], fb[1]);
+              const double tb[3] = {cb.x, cb.y, cb.z};
+              for (std::size_t k = 0; k < texture.size(); ++k)
+                best[k] =
+                    std::min(best[k], attribute_distance(measures[texture[k]].kind, ta, tb, 3));
+            }
+            for (std::size_t k = 0; k < texture.size(); ++k) out.values[texture[k]][i] = best[k];
+          }
         }
+        from = to;
       }
     }
   }

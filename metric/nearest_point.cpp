@@ -20,8 +20,8 @@ std::unique_ptr<NearestPointIndex> make_nearest_point_index(const TriMesh& targe
   return std::make_unique<TriangleGrid>(target, ties, threads);
 }
 
-void NearestPointIndex::find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
-                                   BatchHits& out) const {
+std::size_t NearestPointIndex::find_batch(const Vec3* points, const QueryHint* hints,
+                                          std::size_t count, BatchHits& out) const {
   out.distance.resize(count);
   out.first.resize(count + 1);
   out.hits.clear();
@@ -29,7 +29,8 @@ void NearestPointIndex::find_batch(const Vec3* points, const QueryHint* hints, s
   out.packet_queries = 0;
   std::vector<SurfaceHit> ties;
   std::uint32_t previous = kNoFace;
-  for (std::size_t i = 0; i < count; ++i) {
+  std::size_t i = 0;
+  for (; i < count && out.hits.size() < BatchHits::kMaxHits; ++i) {
     QueryHint hint = hints != nullptr ? hints[i] : QueryHint{};
     if (hint.start_face == kNoFace) hint.start_face = previous;
     out.distance[i] = find(points[i], hint, ties);
@@ -37,6 +38,9 @@ void NearestPointIndex::find_batch(const Vec3* points, const QueryHint* hints, s
     out.first[i + 1] = static_cast<std::uint32_t>(out.hits.size());
     previous = ties.front().face;
   }
+  out.distance.resize(i);
+  out.first.resize(i + 1);
+  return i;
 }
 
 namespace detail {

@@ -49,6 +49,10 @@ struct QueryHint {
 // The answers to a batch of queries (NearestPointIndex::find_batch), flattened so a batch of
 // thousands of queries makes no per-query allocation.
 struct BatchHits {
+  // find_batch stops after the query that brings the ties held to this many (72 bytes each), so
+  // a batch stays a few MB even where every query ties with millions of faces.
+  static constexpr std::size_t kMaxHits = std::size_t{1} << 16;
+
   std::vector<double> distance;      // per query: the minimum distance (absolute)
   std::vector<std::uint32_t> first;  // per query, plus one: ties of query i are
                                      // hits[first[i]] .. hits[first[i + 1] - 1], sorted by face
@@ -73,14 +77,15 @@ class NearestPointIndex {
   virtual double find(const Vec3& p, const QueryHint& hint,
                       std::vector<SurfaceHit>& ties) const = 0;
 
-  // Answers `count` queries at once, each exactly as find(points[i], hints[i]) would: same
-  // distance, same ties in the same order. Queries given in a coherent order (consecutive ones
-  // near each other, e.g. samples generated face by face or sorted along a Morton curve) let an
-  // index share work between them (TriangleBvh: packets). A hint whose start_face is kNoFace gets
-  // the previous query's nearest face. `hints` may be nullptr (no hints). The default loops over
-  // find(). O(count) queries.
-  virtual void find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
-                          BatchHits& out) const;
+  // Answers the first n of `count` queries at once and returns n (1 <= n <= count for count > 0;
+  // n < count only once BatchHits::kMaxHits ties are held), each exactly as find(points[i],
+  // hints[i]) would: same distance, same ties in the same order; `out` holds those n. Queries
+  // given in a coherent order (consecutive ones near each other, e.g. samples generated face by
+  // face or sorted along a Morton curve) let an index share work between them (TriangleBvh:
+  // packets). A hint whose start_face is kNoFace gets the previous query's nearest face. `hints`
+  // may be nullptr (no hints). The default loops over find(). O(n) queries.
+  virtual std::size_t find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
+                                 BatchHits& out) const;
 };
 
 enum class IndexKind {

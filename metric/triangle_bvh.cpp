@@ -601,8 +601,8 @@ const TriangleBvh::FacePlanes& TriangleBvh::face_planes(std::uint32_t face,
   return f;
 }
 
-void TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
-                             BatchHits& out) const {
+std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
+                                    BatchHits& out) const {
   out.distance.resize(count);
   out.first.resize(count + 1);
   out.hits.clear();
@@ -620,7 +620,7 @@ void TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, std::si
   };
   const double max_diag2 = packet_extent_ * packet_extent_;
   std::size_t i = 0;
-  while (i < count) {
+  while (i < count && out.hits.size() < BatchHits::kMaxHits) {
     // Grow a packet of consecutive queries while its box stays small.
     std::size_t j = i;
     float lo[3], hi[3];
@@ -642,14 +642,20 @@ void TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, std::si
       single(i++);
       continue;
     }
-    if (j - i >= kMinPacket && find_packet(points, hints, i, j - i, previous, scratch, out)) {
-      previous = out.hits[out.first[j - 1]].face;
-      out.packet_queries += j - i;
+    const std::size_t answered =
+        j - i >= kMinPacket ? find_packet(points, hints, i, j - i, previous, scratch, out) : 0;
+    if (answered > 0) {
+      previous = out.hits[out.first[i + answered - 1]].face;
+      out.packet_queries += answered;
+      i += answered;
     } else {
-      for (std::size_t k = i; k < j; ++k) single(k);
+      single(i++);
+      while (i < j && out.hits.size() < BatchHits::kMaxHits) single(i++);
     }
-    i = j;
   }
+  out.distance.resize(i);
+  out.first.resize(i + 1);
+  return i;
 }
 
 bool TriangleBvh::gather(const float lo[3], const float hi[3], double reach, std::size_t max_faces,
@@ -709,9 +715,9 @@ bool TriangleBvh::gather(const float lo[3], const float hi[3], double reach, std
   return true;
 }
 
-bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
-                              std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
-                              BatchHits& out) const {
+std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
+                                     std::size_t n, std::uint32_t start_face,
+                                     PacketScratch& scratch, BatchHits& out) const {
   assert(n >= 2 && n <= kPacketSize);
   const QueryHint no_hint;
   auto hint_of = [&](std::size_t k) -> const QueryHint& {
@@ -755,7 +761,7 @@ bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::s
   }
   if (!std::isfinite(packet_reach) ||
       !gather(lo, hi, packet_reach, kMaxCandidates, scratch.faces) || scratch.faces.empty())
-    return false;
+    return 0;
 
   // The candidates' planes, from the cache (consecutive packets share most of their faces).
   const std::size_t candidates = scratch.faces.size();
@@ -797,6 +803,7 @@ bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::s
   scratch.bound.resize(4 * scratch.planes.size());
   const F4 zero = F4::splat(0.0f);
   for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0 && out.hits.size() >= BatchHits::kMaxHits) return k;  // answered k of n
     if (k == c) {
       out.distance[base + k] = d_c;
       out.hits.insert(out.hits.end(), scratch.center_ties.begin(), scratch.center_ties.end());
@@ -883,7 +890,7 @@ bool TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::s
     out.hits.insert(out.hits.end(), ties.begin(), ties.end());
     out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
   }
-  return true;
+  return n;
 }
 
 }  // namespace meshdev

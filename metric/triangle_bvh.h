@@ -45,8 +45,8 @@ class TriangleBvh final : public NearestPointIndex {
   TriangleBvh(const TriMesh& target, const TieOptions& ties = {}, int threads = 0);
   std::string name() const override { return "bvh"; }
   double find(const Vec3& p, const QueryHint& hint, std::vector<SurfaceHit>& ties) const override;
-  void find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
-                  BatchHits& out) const override;
+  std::size_t find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
+                         BatchHits& out) const override;
 
   std::size_t node_count() const { return nodes_.size(); }
   std::size_t leaf_count() const { return leaves_.size(); }
@@ -89,9 +89,11 @@ class TriangleBvh final : public NearestPointIndex {
   // (query + corner rounding). False if the query is too far out to be culled in float.
   bool to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const;
   // Answers queries [base, base + n) of a batch as one packet (their frame coordinates are in
-  // `scratch`); false, with nothing written, if the packet's reach holds too many faces.
-  bool find_packet(const Vec3* points, const QueryHint* hints, std::size_t base, std::size_t n,
-                   std::uint32_t start_face, PacketScratch& scratch, BatchHits& out) const;
+  // `scratch`) and returns how many it answered: n, or fewer once BatchHits::kMaxHits ties are
+  // held; 0, with nothing written, if the packet's reach holds too many faces.
+  std::size_t find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
+                          std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
+                          BatchHits& out) const;
   // The planes of `face`, from the batch's cache or computed into it.
   const FacePlanes& face_planes(std::uint32_t face, PacketScratch& scratch) const;
   // The faces whose float boxes lie within `reach` (float frame) of the box [lo, hi]; false if

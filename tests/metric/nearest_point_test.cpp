@@ -346,7 +346,9 @@ TEST(NearestPoint, BvhBatchEqualsBruteForceOnCoherentQueries) {
           sphere, qs, "offset " + std::to_string(offset) + (hinted ? " hinted" : ""));
       // Runs that stay near one small face must go through the packet path (farther spread
       // runs are answered one by one, which is checked above all the same).
-      if (offset <= 1e-3) EXPECT_GT(packets, qs.points.size() / 16) << "offset " << offset;
+      if (offset <= 1e-3) {
+        EXPECT_GT(packets, qs.points.size() / 16) << "offset " << offset;
+      }
     }
   }
 }
@@ -458,6 +460,40 @@ TEST(NearestPoint, BvhDoesNotCullWhereSquaredDistancesUnderflow) {
       ASSERT_EQ(batch.distance[i], brute.find(points[i], {}, tf)) << size;
       expect_same({batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i)}, tf);
     }
+  }
+}
+
+// Where every query ties with thousands of faces (3,000 copies of one triangle), a batch stops
+// once BatchHits::kMaxHits ties are held instead of holding count x 3,000; the caller goes on
+// from there, and every answer is still the oracle's.
+TEST(NearestPoint, FindBatchStopsEarlyWhenTiesPileUp) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  for (int k = 0; k < 3000; ++k) m.faces.push_back({0, 1, 2});
+  const TriangleBvh bvh(m);
+  const NearestPointBrute brute(m);
+  std::vector<Vec3> points;
+  for (int k = 0; k < 64; ++k) points.push_back({0.2 + 1e-3 * k, 0.2, 0.1});
+  for (const NearestPointIndex* index :
+       std::initializer_list<const NearestPointIndex*>{&bvh, &brute}) {
+    std::vector<SurfaceHit> tf;
+    std::size_t done = 0, batches = 0;
+    while (done < points.size()) {
+      BatchHits batch;
+      const std::size_t n =
+          index->find_batch(points.data() + done, nullptr, points.size() - done, batch);
+      ASSERT_GE(n, 1u);
+      ASSERT_EQ(batch.size(), n);
+      EXPECT_LE(batch.hits.size(), BatchHits::kMaxHits + 3000);
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(batch.distance[i], brute.find(points[done + i], {}, tf));
+        expect_same({batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i)}, tf);
+        EXPECT_EQ(tf.size(), 3000u);
+      }
+      done += n;
+      ++batches;
+    }
+    EXPECT_GE(batches, 3u) << index->name();  // 64 x 3,000 ties > 2 x kMaxHits
   }
 }
 
