@@ -104,6 +104,16 @@ float round_up(double x) {
   return static_cast<double>(f) < x ? next_up(f) : f;
 }
 
+// The conditioning kappa = |ab||ac| / |ab x ac| of a triangle with edges ab, ac (float frame), or
+// +inf where the triangle bound must never cull it: |ab x ac|^2 near float underflow
+// (kMinNormal2) or a sliver (kappa > kMaxKappa). Shared by the leaf bound and the packet planes.
+double cull_kappa(const Vec3& ab, const Vec3& ac) {
+  const double n2 = squared_norm(cross(ab, ac));
+  if (!(n2 >= kMinNormal2)) return std::numeric_limits<double>::infinity();
+  const double kappa = norm(ab) * norm(ac) / std::sqrt(n2);
+  return kappa <= kMaxKappa ? kappa : std::numeric_limits<double>::infinity();  // NaN too
+}
+
 // Trivial (no initialisers): 2F of them are allocated up front and only those used are ever
 // written, so the unused part of the allocation is never touched.
 struct BinaryNode {
@@ -332,10 +342,8 @@ void TriangleBvh::build(int threads) {
           cc{c[2][0], c[2][1], c[2][2]};
       const Vec3 ab = bb - a, ac = cc - a;
       size_sum += std::max({norm(ab), norm(ac), norm(cc - bb)});
-      const double n2 = squared_norm(cross(ab, ac));
-      const double kappa = n2 > 0.0 ? norm(ab) * norm(ac) / std::sqrt(n2) : kInf;
-      // The float computation of |ab x ac|^2 must stay far from underflow (kMinNormal2).
-      if (n2 >= kMinNormal2 && kappa <= kMaxKappa)
+      const double kappa = cull_kappa(ab, ac);
+      if (std::isfinite(kappa))
         leaf.margin[lane] = round_up(kMarginConstant * kUnit * (2.0 + kappa));
     }
     leaves_.push_back(leaf);
@@ -566,6 +574,7 @@ struct TriangleBvh::PacketScratch {
   std::vector<std::uint32_t> survivors;
   std::vector<SurfaceHit> ties, center_ties;
   std::vector<FacePlanes> cache;  // 2^kCacheBits slots, allocated with the first packet
+  float lo[3], hi[3];             // the packet's box (float frame), set while it grows
 };
 
 const TriangleBvh::FacePlanes& TriangleBvh::face_planes(std::uint32_t face,
@@ -580,11 +589,9 @@ const TriangleBvh::FacePlanes& TriangleBvh::face_planes(std::uint32_t face,
   for (int corner = 0; corner < 3; ++corner)
     v[corner] = scale_ * (mesh.positions[mesh.faces[face][corner]] - origin_);
   const Vec3 ab = v[1] - v[0], ac = v[2] - v[0];
+  if (!std::isfinite(cull_kappa(ab, ac))) return f;  // never culled: all zeros
   const Vec3 nrm = cross(ab, ac);
-  const double n2 = squared_norm(nrm);
-  if (!(n2 >= kMinNormal2) || !(norm(ab) * norm(ac) <= kMaxKappa * std::sqrt(n2)))
-    return f;  // never culled: all zeros
-  const Vec3 unit = (1.0 / std::sqrt(n2)) * nrm;
+  const Vec3 unit = (1.0 / norm(nrm)) * nrm;
   const double offset = dot(unit, v[0]);
   double max_offset = std::fabs(offset);
   for (int a = 0; a < 3; ++a) f.n[a] = static_cast<float>(unit[a]);
@@ -623,7 +630,8 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
   while (i < count && out.hits.size() < BatchHits::kMaxHits) {
     // Grow a packet of consecutive queries while its box stays small.
     std::size_t j = i;
-    float lo[3], hi[3];
+    float* lo = scratch.lo;
+    float* hi = scratch.hi;
     for (; j < count && j - i < kPacketSize; ++j) {
       const std::size_t k = j - i;
       if (!to_frame(points[j], scratch.q[k], scratch.qf[k], scratch.slack[k])) break;
@@ -749,18 +757,14 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   };
   double initial_reach[kPacketSize];
   double packet_reach = 0.0;
-  float lo[3], hi[3];
   for (std::size_t k = 0; k < n; ++k) {
     separation[k] = norm(points[base + k] - points[base + c]);
     initial_reach[k] = reach(k, initial_limit(k));
     packet_reach = std::max(packet_reach, initial_reach[k]);
-    for (int a = 0; a < 3; ++a) {
-      lo[a] = k == 0 ? scratch.qf[k][a] : std::min(lo[a], scratch.qf[k][a]);
-      hi[a] = k == 0 ? scratch.qf[k][a] : std::max(hi[a], scratch.qf[k][a]);
-    }
   }
   if (!std::isfinite(packet_reach) ||
-      !gather(lo, hi, packet_reach, kMaxCandidates, scratch.faces) || scratch.faces.empty())
+      !gather(scratch.lo, scratch.hi, packet_reach, kMaxCandidates, scratch.faces) ||
+      scratch.faces.empty())
     return 0;
 
   // The candidates' planes, from the cache (consecutive packets share most of their faces).

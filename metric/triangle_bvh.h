@@ -88,9 +88,9 @@ class TriangleBvh final : public NearestPointIndex {
   // The query in the float frame: coordinates, their float rounding, and the culling slack
   // (query + corner rounding). False if the query is too far out to be culled in float.
   bool to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const;
-  // Answers queries [base, base + n) of a batch as one packet (their frame coordinates are in
-  // `scratch`) and returns how many it answered: n, or fewer once BatchHits::kMaxHits ties are
-  // held; 0, with nothing written, if the packet's reach holds too many faces.
+  // Answers queries [base, base + n) of a batch as one packet (their frame coordinates and box
+  // are in `scratch`) and returns how many it answered: n, or fewer once BatchHits::kMaxHits ties
+  // are held; 0, with nothing written, if the packet's reach holds too many faces.
   std::size_t find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
                           std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
                           BatchHits& out) const;
