@@ -58,25 +58,68 @@ constexpr std::size_t kMinPacket = 8;
 constexpr double kPacketExtent = 1.0;
 constexpr std::size_t kMaxCandidates = 256;
 
+// A float box; extending by float coordinates is exact.
 struct Box {
-  double lo[3] = {+1e300, +1e300, +1e300};
-  double hi[3] = {-1e300, -1e300, -1e300};
+  float lo[3] = {kInf, kInf, kInf};
+  float hi[3] = {-kInf, -kInf, -kInf};
   void extend(const Box& b) {
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::min(lo[k], b.lo[k]);
       hi[k] = std::max(hi[k], b.hi[k]);
     }
   }
-  void extend(const double p[3]) {
+  void extend(const float p[3]) {
     for (int k = 0; k < 3; ++k) {
       lo[k] = std::min(lo[k], p[k]);
       hi[k] = std::max(hi[k], p[k]);
     }
   }
   double half_area() const {
-    if (lo[0] > hi[0]) return 0.0;
-    const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    if (!(lo[0] <= hi[0])) return 0.0;
+    const double dx = double(hi[0]) - lo[0], dy = double(hi[1]) - lo[1], dz = double(hi[2]) - lo[2];
     return dx * dy + dy * dz + dz * dx;
+  }
+};
+
+// One face during the build, 32 bytes: its box in the float frame, rounded outwards (so node
+// boxes made of them are conservative), with the face index's bits in the fourth lane of lo
+// (the box unions compute that lane and never read it). The build partitions these in place, so
+// every pass over a range reads memory in order. lo + hi, twice the box centre, places the face.
+struct alignas(16) Prim {
+  float lo[4];
+  float hi[4];  // lane 3: 0
+  std::uint32_t face() const {
+    std::uint32_t f;
+    std::memcpy(&f, &lo[3], sizeof f);
+    return f;
+  }
+  F4 centre2() const { return F4::load(lo) + F4::load(hi); }
+  // The centre key along `axis`; NaN (boxes reaching +-inf, only on meshes never culled) is 0.
+  float key(int axis) const {
+    const float c = lo[axis] + hi[axis];
+    return c == c ? c : 0.0f;
+  }
+};
+
+// Boxes of the binning, lanes x, y, z (lane 3 unused).
+struct Bounds {
+  F4 lo = F4::splat(kInf), hi = F4::splat(-kInf);
+  void extend(const Bounds& b) {
+    lo = simd::min(lo, b.lo);
+    hi = simd::max(hi, b.hi);
+  }
+  void extend(F4 l, F4 h) {
+    lo = simd::min(lo, l);
+    hi = simd::max(hi, h);
+  }
+  Box box() const {
+    float l[4], h[4];
+    simd::store(l, lo);
+    simd::store(h, hi);
+    Box b;
+    std::copy(l, l + 3, b.lo);
+    std::copy(h, h + 3, b.hi);
+    return b;
   }
 };
 
@@ -117,15 +160,15 @@ double cull_kappa(const Vec3& ab, const Vec3& ac) {
 // Trivial (no initialisers): 2F of them are allocated up front and only those used are ever
 // written, so the unused part of the allocation is never touched.
 struct BinaryNode {
-  double lo[3], hi[3];
-  std::uint32_t index;  // inner: first of two consecutive children; leaf: first slot in order
+  float lo[3], hi[3];
+  std::uint32_t index;  // inner: first of two consecutive children; leaf: first slot in prims
   std::uint32_t count;  // 0 for an inner node
   void set_box(const Box& b) {
     std::copy(b.lo, b.lo + 3, lo);
     std::copy(b.hi, b.hi + 3, hi);
   }
   double half_area() const {
-    const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    const double dx = double(hi[0]) - lo[0], dy = double(hi[1]) - lo[1], dz = double(hi[2]) - lo[2];
     return dx * dy + dy * dz + dz * dx;
   }
 };
@@ -178,21 +221,33 @@ void TriangleBvh::build(int threads) {
   cull_scale_ = extent >= kMinExtent && extent <= kMaxExtent;
   const int team = threads > 0 ? threads : omp_get_max_threads();
   const auto vertices = static_cast<std::int64_t>(m.positions.size());
-  std::vector<std::array<double, 3>> frame(m.positions.size());
+  // Scratch arrays are allocated uninitialised and first written by the threads that use them.
+  std::unique_ptr<std::array<double, 3>[]> frame(new std::array<double, 3>[m.positions.size()]);
 #pragma omp parallel for num_threads(team) schedule(static)
   for (std::int64_t v = 0; v < vertices; ++v)
     for (int k = 0; k < 3; ++k) frame[v][k] = (m.positions[v][k] - origin_[k]) * scale_;
 
-  // Binary SAH tree over the face boxes (float frame, double precision).
-  std::vector<Box> boxes(n);
-  std::vector<std::array<double, 3>> centroids(n);
+  // Binary SAH tree over the face boxes (float frame).
+  std::unique_ptr<Prim[]> prims(new Prim[n]);
+  std::unique_ptr<std::uint8_t[]> bin_at(new std::uint8_t[n]);  // bin of the face at a position
 #pragma omp parallel for num_threads(team) schedule(static)
   for (std::int64_t f = 0; f < static_cast<std::int64_t>(n); ++f) {
-    for (std::uint32_t v : m.faces[f]) boxes[f].extend(frame[v].data());
-    for (int k = 0; k < 3; ++k) centroids[f][k] = 0.5 * (boxes[f].lo[k] + boxes[f].hi[k]);
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = frame[m.faces[f][0]][k];
+    for (int corner = 1; corner < 3; ++corner)
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], frame[m.faces[f][corner]][k]);
+        hi[k] = std::max(hi[k], frame[m.faces[f][corner]][k]);
+      }
+    Prim& prim = prims[f];
+    for (int k = 0; k < 3; ++k) {
+      prim.lo[k] = round_down(lo[k]);
+      prim.hi[k] = round_up(hi[k]);
+    }
+    const auto face = static_cast<std::uint32_t>(f);
+    std::memcpy(&prim.lo[3], &face, sizeof face);
+    prim.hi[3] = 0.0f;
   }
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
   // The binary tree has at most 2n - 1 nodes; children are allocated in pairs from a counter, so
   // subtrees can be built in parallel (OpenMP tasks above kTaskBelow faces). The tree's shape
   // does not depend on the thread count: each split depends only on its own range of faces.
@@ -200,56 +255,64 @@ void TriangleBvh::build(int threads) {
   std::unique_ptr<BinaryNode[]> tree(new BinaryNode[max_nodes]);
   std::atomic<std::uint32_t> next_node{1};
   auto split = [&](auto&& self, std::uint32_t node, std::uint32_t begin, std::uint32_t end,
-                   int depth, bool known, Box bounds, Box centroid_bounds) -> void {
+                   int depth, bool known, Bounds bounds, Bounds centre_bounds) -> void {
     assert(depth <= kMaxBinaryDepth);
+    Prim* const first = prims.get();
     if (!known)
       for (std::uint32_t i = begin; i < end; ++i) {
-        bounds.extend(boxes[order[i]]);
-        centroid_bounds.extend(centroids[order[i]].data());
+        bounds.extend(F4::load(first[i].lo), F4::load(first[i].hi));
+        const F4 c = first[i].centre2();
+        centre_bounds.extend(c, c);
       }
-    tree[node].set_box(bounds);
+    tree[node].set_box(bounds.box());
     const std::uint32_t count = end - begin;
     if (count <= kLeafSize) {
       tree[node].index = begin;
       tree[node].count = count;
       return;
     }
+    const Box centres = centre_bounds.box();
     int axis = 0;
     double axis_extent = -1.0;
-    for (int k = 0; k < 3; ++k)
-      if (centroid_bounds.hi[k] - centroid_bounds.lo[k] > axis_extent) {
-        axis_extent = centroid_bounds.hi[k] - centroid_bounds.lo[k];
+    for (int k = 0; k < 3; ++k) {
+      const double e = double(centres.hi[k]) - centres.lo[k];
+      if (e > axis_extent) {
+        axis_extent = e;
         axis = k;
       }
-    // Equal centroids or too deep: split the list in halves, which bounds depth and leaf sizes.
+    }
+    // Equal centres or too deep: split the list in halves, which bounds depth and leaf sizes.
     std::uint32_t mid = begin + std::max(kLeafSize, count / 2 / kLeafSize * kLeafSize);
     bool children_known = false;
-    Box child_bounds[2], child_centroids[2];
+    Bounds child_bounds[2], child_centres[2];
     if (axis_extent > 0.0 && depth < kMaxSahDepth) {
-      Box bin_box[kBins], bin_centroids[kBins];
+      Bounds bin_box[kBins], bin_centres[kBins];
       std::uint32_t bin_count[kBins] = {};
-      const double scale = kBins / axis_extent;
-      auto bin_of = [&](std::uint32_t f) {
-        const int b = static_cast<int>((centroids[f][axis] - centroid_bounds.lo[axis]) * scale);
-        return std::clamp(b, 0, kBins - 1);
+      const double lo = centres.lo[axis];
+      const double scale = kBins / axis_extent;  // finite: axis_extent >= the least float
+      auto bin_of = [&](const Prim& prim) {
+        const double t = (prim.key(axis) - lo) * scale;
+        return t >= kBins - 1 ? kBins - 1 : t > 0.0 ? static_cast<int>(t) : 0;
       };
       for (std::uint32_t i = begin; i < end; ++i) {
-        const int b = bin_of(order[i]);
-        bin_box[b].extend(boxes[order[i]]);
-        bin_centroids[b].extend(centroids[order[i]].data());
+        const int b = bin_of(first[i]);
+        bin_at[i] = static_cast<std::uint8_t>(b);
+        bin_box[b].extend(F4::load(first[i].lo), F4::load(first[i].hi));
+        const F4 c = first[i].centre2();
+        bin_centres[b].extend(c, c);
         ++bin_count[b];
       }
       double right_area[kBins];
       std::uint32_t right_count[kBins];
-      Box acc;
+      Bounds acc;
       std::uint32_t acc_count = 0;
       for (int b = kBins - 1; b > 0; --b) {
         acc.extend(bin_box[b]);
         acc_count += bin_count[b];
-        right_area[b] = acc.half_area();
+        right_area[b] = acc.box().half_area();
         right_count[b] = acc_count;
       }
-      Box left;
+      Bounds left;
       std::uint32_t left_count = 0;
       double best_cost = std::numeric_limits<double>::infinity();
       int best_split = -1;
@@ -257,19 +320,26 @@ void TriangleBvh::build(int threads) {
         left.extend(bin_box[b - 1]);
         left_count += bin_count[b - 1];
         if (left_count == 0 || right_count[b] == 0) continue;
-        const double cost = left.half_area() * left_count + right_area[b] * right_count[b];
+        const double cost = left.box().half_area() * left_count + right_area[b] * right_count[b];
         if (cost < best_cost) {
           best_cost = cost;
           best_split = b;
         }
       }
       if (best_split > 0) {
-        auto it = std::partition(order.begin() + begin, order.begin() + end,
-                                 [&](std::uint32_t f) { return bin_of(f) < best_split; });
-        mid = static_cast<std::uint32_t>(it - order.begin());
+        // Hoare partition by the bins just computed: each position's bin is read before any
+        // swap moves another face there.
+        std::uint32_t i = begin, j = end;
+        for (;;) {
+          while (i < j && bin_at[i] < best_split) ++i;
+          while (i < j && bin_at[j - 1] >= best_split) --j;
+          if (i + 1 >= j) break;
+          std::swap(first[i++], first[--j]);
+        }
+        mid = i;
         for (int b = 0; b < kBins; ++b) {
           child_bounds[b < best_split ? 0 : 1].extend(bin_box[b]);
-          child_centroids[b < best_split ? 0 : 1].extend(bin_centroids[b]);
+          child_centres[b < best_split ? 0 : 1].extend(bin_centres[b]);
         }
         children_known = true;
       }
@@ -286,10 +356,10 @@ void TriangleBvh::build(int threads) {
       if (aligned != sah_left) {
         children_known = false;
         mid = begin + aligned;
-        std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                         [&](std::uint32_t x, std::uint32_t y) {
-                           return centroids[x][axis] < centroids[y][axis] ||
-                                  (centroids[x][axis] == centroids[y][axis] && x < y);
+        std::nth_element(first + begin, first + mid, first + end,
+                         [&](const Prim& x, const Prim& y) {
+                           const float kx = x.key(axis), ky = y.key(axis);
+                           return kx < ky || (kx == ky && x.face() < y.face());
                          });
       }
     }
@@ -300,66 +370,36 @@ void TriangleBvh::build(int threads) {
     if (count > kTaskBelow) {
 #pragma omp task default(shared) firstprivate(left_child, mid, children_known)
       self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
-           child_centroids[0]);
+           child_centres[0]);
       self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
-           child_centroids[1]);
+           child_centres[1]);
 #pragma omp taskwait
     } else {
       self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
-           child_centroids[0]);
+           child_centres[0]);
       self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
-           child_centroids[1]);
+           child_centres[1]);
     }
   };
 #pragma omp parallel num_threads(team)
 #pragma omp single
-  split(split, 0, 0, n, 1, false, Box{}, Box{});
+  split(split, 0, 0, n, 1, false, Bounds{}, Bounds{});
 
-  // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
-  double size_sum = 0.0;  // of the faces' longest edges, for the packet extent
-  auto make_leaf = [&](const BinaryNode& b) {
-    Leaf leaf{};
-    for (int lane = 0; lane < 4; ++lane) {
-      leaf.margin[lane] = kInf;
-      leaf.face[lane] = kNoFace;
-    }
-    for (std::uint32_t lane = 0; lane < b.count; ++lane) {
-      const std::uint32_t f = order[b.index + lane];
-      leaf.face[lane] = f;
-      double c[3][3];  // the float corners, exactly, in double
-      for (int corner = 0; corner < 3; ++corner) {
-        const auto& x = frame[m.faces[f][corner]];
-        double err2 = 0.0;
-        for (int k = 0; k < 3; ++k) {
-          const float r = static_cast<float>(x[k]);
-          leaf.corner[corner][k][lane] = r;
-          c[corner][k] = r;
-          err2 += (c[corner][k] - x[k]) * (c[corner][k] - x[k]);
-        }
-        corner_error_ = std::max(corner_error_, std::sqrt(err2));
-      }
-      const Vec3 a{c[0][0], c[0][1], c[0][2]}, bb{c[1][0], c[1][1], c[1][2]},
-          cc{c[2][0], c[2][1], c[2][2]};
-      const Vec3 ab = bb - a, ac = cc - a;
-      size_sum += std::max({norm(ab), norm(ac), norm(cc - bb)});
-      const double kappa = cull_kappa(ab, ac);
-      if (std::isfinite(kappa))
-        leaf.margin[lane] = round_up(kMarginConstant * kUnit * (2.0 + kappa));
-    }
-    leaves_.push_back(leaf);
-    return kLeafBit | static_cast<std::uint32_t>(leaves_.size() - 1);
-  };
-
-  // Collapse into 4-wide nodes (recursive: the binary depth is bounded).
+  // Collapse into 4-wide nodes (recursive: the binary depth is bounded). Leaf blocks are numbered
+  // here and filled below, in parallel.
   nodes_.clear();
   leaves_.clear();
   const std::size_t used = next_node.load();
   nodes_.reserve(used / 3 + 1);
-  leaves_.reserve(used / 2 + 1);
+  std::vector<std::uint32_t> leaf_nodes;  // binary leaf of each leaf block
+  leaf_nodes.reserve(used / 2 + 1);
   depth_ = 0;
   auto collapse = [&](auto&& self, std::uint32_t bi, int depth) -> std::uint32_t {
     depth_ = std::max(depth_, depth);
-    if (tree[bi].count > 0) return make_leaf(tree[bi]);
+    if (tree[bi].count > 0) {
+      leaf_nodes.push_back(bi);
+      return kLeafBit | static_cast<std::uint32_t>(leaf_nodes.size() - 1);
+    }
     std::uint32_t kids[4] = {tree[bi].index, tree[bi].index + 1, 0, 0};
     int count = 2;
     while (count < 4) {
@@ -383,14 +423,58 @@ void TriangleBvh::build(int threads) {
     for (int k = 0; k < 4; ++k) {
       node.child[k] = refs[k];
       for (int axis = 0; axis < 3; ++axis) {
-        node.lo[axis][k] = k < count ? round_down(tree[kids[k]].lo[axis]) : kInf;
-        node.hi[axis][k] = k < count ? round_up(tree[kids[k]].hi[axis]) : -kInf;
+        node.lo[axis][k] = k < count ? tree[kids[k]].lo[axis] : kInf;
+        node.hi[axis][k] = k < count ? tree[kids[k]].hi[axis] : -kInf;
       }
     }
     return id;
   };
   root_ = collapse(collapse, 0, 1);
-  packet_extent_ = kPacketExtent * size_sum / n;
+
+  // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
+  const auto leaf_count = static_cast<std::int64_t>(leaf_nodes.size());
+  leaves_.resize(leaf_nodes.size());
+  std::vector<double> leaf_size(leaf_nodes.size());  // sum of the faces' longest edges
+  double corner_error2 = 0.0;                        // square roots are taken once, of the maxima
+#pragma omp parallel for num_threads(team) schedule(static) reduction(max : corner_error2)
+  for (std::int64_t l = 0; l < leaf_count; ++l) {
+    const BinaryNode& b = tree[leaf_nodes[l]];
+    Leaf& leaf = leaves_[l];
+    double size = 0.0;
+    for (int lane = 0; lane < 4; ++lane) {
+      leaf.margin[lane] = kInf;
+      leaf.face[lane] = kNoFace;
+      for (int corner = 0; corner < 3; ++corner)
+        for (int k = 0; k < 3; ++k) leaf.corner[corner][k][lane] = 0.0f;
+    }
+    for (std::uint32_t lane = 0; lane < b.count; ++lane) {
+      const std::uint32_t f = prims[b.index + lane].face();
+      leaf.face[lane] = f;
+      double c[3][3];  // the float corners, exactly, in double
+      for (int corner = 0; corner < 3; ++corner) {
+        const auto& x = frame[m.faces[f][corner]];
+        double err2 = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const float r = static_cast<float>(x[k]);
+          leaf.corner[corner][k][lane] = r;
+          c[corner][k] = r;
+          err2 += (c[corner][k] - x[k]) * (c[corner][k] - x[k]);
+        }
+        corner_error2 = std::max(corner_error2, err2);
+      }
+      const Vec3 a{c[0][0], c[0][1], c[0][2]}, bb{c[1][0], c[1][1], c[1][2]},
+          cc{c[2][0], c[2][1], c[2][2]};
+      const Vec3 ab = bb - a, ac = cc - a;
+      size += std::sqrt(std::max({squared_norm(ab), squared_norm(ac), squared_norm(cc - bb)}));
+      const double kappa = cull_kappa(ab, ac);
+      if (std::isfinite(kappa))
+        leaf.margin[lane] = round_up(kMarginConstant * kUnit * (2.0 + kappa));
+    }
+    leaf_size[l] = size;
+  }
+  corner_error_ = std::sqrt(corner_error2);
+  // Summed in leaf order, so the packet extent does not depend on the thread count.
+  packet_extent_ = kPacketExtent * std::accumulate(leaf_size.begin(), leaf_size.end(), 0.0) / n;
   assert(depth_ <= kMaxBinaryDepth);
 }
 
