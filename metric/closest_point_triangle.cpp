@@ -80,9 +80,12 @@ TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& 
   const Vec3 bp = p - b;
   const double d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0.0 && d4 <= d3) return make_hit(b, squared_norm(bp), 0, 1, 0);
-  // Edge region AB.
+  // Edge region AB. Each edge's parameter is num / den with 0 <= num <= den, and den is |edge|^2
+  // in exact arithmetic. Where it rounds to 0 (a query ~1e95 times farther than the edge is
+  // long: both projections flattened to 0, found by fuzz_nearest_point) the region test itself
+  // is noise, so that edge's region is not taken (and 0 / 0 never computed).
   const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) {
     const double v = d1 / (d1 - d3);
     return make_hit(a + v * ab, squared_norm(ap - v * ab), 1.0 - v, v, 0);
   }
@@ -92,17 +95,19 @@ TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& 
   if (d6 >= 0.0 && d5 <= d6) return make_hit(c, squared_norm(cp), 0, 0, 1);
   // Edge region AC.
   const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) {
     const double w = d2 / (d2 - d6);
     return make_hit(a + w * ac, squared_norm(ap - w * ac), 1.0 - w, 0, w);
   }
   // Edge region BC.
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) {
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && (d4 - d3) + (d5 - d6) > 0.0) {
     const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     return make_hit(b + w * (c - b), squared_norm(bp - w * (c - b)), 0, 1.0 - w, w);
   }
-  // Face interior: the distance to the plane, exactly 0 for a point in the plane.
+  // Face interior: the distance to the plane, exactly 0 for a point in the plane. (va + vb + vc
+  // = |n|^2 > 0 here; rounding that left no positive sum leaves the triangle as its edges.)
+  if (!(va + vb + vc > 0.0)) return closest_on_degenerate(p, a, b, c);
   const double denom = 1.0 / (va + vb + vc);
   const double v = vb * denom, w = vc * denom;
   const double h = dot(ap, n);

@@ -64,6 +64,21 @@ TEST(ClosestPointTriangle, DegenerateTrianglesNeverGiveNaN) {
   EXPECT_NEAR(h.sq_distance, 0.8 * 0.8 + 0.2 * 0.2, 1e-15);
 }
 
+// Found by fuzz_nearest_point: a query 1e95 times farther than edge AB is long, off its side,
+// rounds both of AB's projections (d1, d3) to 0: the parameter was 0 / 0 = NaN, and even
+// guarded, AB's region test was noise. The nearest point lies on the long edges, at distance
+// sqrt(1.25) s from p = (s, -s, s / 2) (the triangle hugs the x axis).
+TEST(ClosestPointTriangle, FarQueryOffAShortEdge) {
+  const Vec3 a{-7.5, -7.5, 0}, b{0, 0, 0}, c{1e100, 4.6875, -5.0625};
+  for (double s : {1e96, 5e96, 9e96}) {
+    const Vec3 p{s, -s, 0.5 * s};
+    const TriangleHit h = closest_point_on_triangle(p, a, b, c);
+    ASSERT_TRUE(is_finite(h.point)) << s;
+    for (double x : h.bary) ASSERT_TRUE(std::isfinite(x)) << s;
+    EXPECT_NEAR(std::sqrt(h.sq_distance), std::sqrt(1.25) * s, 1e-9 * s);
+  }
+}
+
 // The kernel against a dense brute-force search over the triangle's barycentric grid.
 TEST(ClosestPointTriangle, NeverFartherThanAnyPointOfTheTriangle) {
   std::mt19937_64 rng(42);

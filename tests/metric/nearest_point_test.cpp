@@ -456,6 +456,23 @@ TEST(NearestPoint, BvhDoesNotCullWhereSquaredDistancesUnderflow) {
   }
 }
 
+// Found by fuzz_nearest_point: the exact kernel returned NaN for a query 1e96 out beside a short
+// edge (0 / 0, see ClosestPointTriangle.FarQueryOffAShortEdgeIsNotNaN). Single queries and the
+// oracle skipped the NaN (every comparison with it is false); a packet took it as its first
+// answer, and every neighbour's distance became NaN.
+TEST(NearestPoint, BvhBatchOfFarQueriesBesideAShortEdge) {
+  TriMesh m;  // the fuzzer's mesh: slivers (never culled, so bound 0 and evaluated first)
+  m.positions = {{0, 0, 0},
+                 {-7.5, -7.5, 0},
+                 {-5.125, -7.5, 1},
+                 {1e100, 4.6875, -5.0625},
+                 {0.50000000000099998, 1.6875, -6.0625}};
+  m.faces = {{4, 0, 4}, {0, 2, 2}, {4, 4, 0}, {3, 2, 0}, {1, 0, 3}, {1, 3, 1}};
+  std::vector<Vec3> points;
+  for (int k = 0; k < 10; ++k) points.push_back(k * 1e96 * Vec3{1, -1, 0.5});
+  EXPECT_GT(batch_packets_checked(m, points, nullptr), 0u);
+}
+
 // Where every query ties with thousands of faces (3,000 copies of one triangle), a batch stops
 // once BatchHits::kMaxHits ties are held instead of holding count x 3,000; the caller goes on
 // from there, and every answer is still the oracle's.
