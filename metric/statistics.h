@@ -26,7 +26,9 @@ struct Statistics {
 
 // Statistics of `values` with `weights` (empty = all 1). Samples with weight 0 count for min, max
 // and the histogram counts only. If every weight is 0, all samples are weighted equally.
-// Precondition: weights empty or the same size as values, weights >= 0. O(n log n) (quantiles).
+// Precondition: weights empty or the same size as values, weights >= 0. O(n) (quantiles: a
+// histogram pass, then selection inside the quantiles' bins; O(n log n) only if they hold most
+// values).
 Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
                               int histogram_bins = 32);
 

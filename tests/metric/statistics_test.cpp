@@ -56,6 +56,60 @@ TEST(Statistics, EqualWeightQuantilesAreTheOrderStatisticsOfTheDefinition) {
   }
 }
 
+// Quantiles are found bin by bin (a histogram pass, then selection or a sort inside the
+// quantile's bin). The twin: all (value, weight) pairs sorted, weights summed in that order.
+// Samples of up to 200k values (up to 12,500 bins), skewed, with many zeros and equal values,
+// zero weights (vertex samples) and an outlier that squeezes most values into the first bins.
+TEST(Statistics, BinnedQuantilesEqualTheSortedTwin) {
+  std::mt19937_64 rng(11);
+  std::exponential_distribution<double> e(3.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double qs[4] = {0.50, 0.90, 0.95, 0.99};
+  for (std::size_t n : {50u, 1000u, 20000u, 200000u}) {
+    for (int shape = 0; shape < 3; ++shape) {
+      std::vector<double> values(n), weights(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double r = u(rng);
+        values[i] = r < 0.2 ? 0.0 : (shape == 1 ? std::floor(e(rng) * 20) / 20 : e(rng));
+        weights[i] = r > 0.9 ? 0.0 : u(rng);
+      }
+      if (shape == 2) values[n / 3] = 1e9;  // an outlier
+      for (bool weighted : {false, true}) {
+        const Statistics s = compute_statistics(values, weighted ? weights : std::vector<double>{});
+        std::vector<std::pair<double, double>> sorted(n);
+        for (std::size_t i = 0; i < n; ++i) sorted[i] = {values[i], weighted ? weights[i] : 1.0};
+        std::sort(sorted.begin(), sorted.end());
+        double total = 0;
+        for (const auto& p : sorted) total += p.second;
+        const double got[4] = {s.p50, s.p90, s.p95, s.p99};
+        for (int q = 0; q < 4; ++q) {
+          double cum = 0, want = sorted.back().first;
+          for (const auto& p : sorted)
+            if ((cum += p.second) >= qs[q] * total) {
+              want = p.first;
+              break;
+            }
+          EXPECT_EQ(got[q], want) << "n " << n << " shape " << shape << " weighted " << weighted
+                                  << " q " << qs[q];
+        }
+      }
+    }
+  }
+}
+
+// A cumulative weight that reaches q of the total exactly at the end of a bin: that bin's last
+// value is the quantile (32 values, 2 bins; weights 0.5, 1.5, ... below 16, then 1).
+TEST(Statistics, WeightedQuantileReachedExactlyAtABinsEnd) {
+  std::vector<double> values, weights;
+  for (int i = 0; i < 32; ++i) {
+    values.push_back(i);
+    weights.push_back(i < 16 ? (i % 2 == 0 ? 0.5 : 1.5) : 1.0);
+  }
+  const Statistics s = compute_statistics(values, weights);
+  ASSERT_TRUE(s.area_weighted);
+  EXPECT_EQ(s.p50, 15.0);  // cumulative weight 16 = 0.5 x 32 at value 15
+}
+
 TEST(Statistics, AllZeroWeightsFallBackToEqualWeights) {
   Statistics s = compute_statistics({1, 3}, {0, 0});
   EXPECT_DOUBLE_EQ(s.mean, 2.0);
