@@ -101,6 +101,20 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   }
   if (!texture.empty()) assert(reference.texture && target.texture && uv_ref && uv_tgt);
   std::vector<double> uv_gap(cohen.empty() ? 0 : n, 0.0);
+  // The samples' box: the grid of the Morton order each chunk is queried in.
+  double x0 = 1e300, y0 = 1e300, z0 = 1e300, x1 = -1e300, y1 = -1e300, z1 = -1e300;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(min           \
+                                                                         : x0, y0, z0) \
+    reduction(max                                                                      \
+              : x1, y1, z1)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+    const Vec3& p = samples.samples[i].point;
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), z0 = std::min(z0, p.z);
+    x1 = std::max(x1, p.x), y1 = std::max(y1, p.y), z1 = std::max(z1, p.z);
+  }
+  BoundingBox sample_box;
+  sample_box.min = {x0, y0, z0};
+  sample_box.max = {x1, y1, z1};
 
 #pragma omp parallel num_threads(threads)
   {
@@ -114,17 +128,18 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
     double fa[16], fb[16];
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
-      // The chunk's nearest points in one batch, in Morton order of the samples' positions:
-      // consecutive queries are then near each other (packets, tight hints) even where samples
-      // come in random order inside large faces. Results go to each sample's own index, so
-      // the order changes only the speed.
+      // The chunk's nearest points in one batch, in Morton order of the samples' positions
+      // (on a grid over all samples, so an already sorted set is left as it is): consecutive
+      // queries are then near each other (packets, tight hints) even where samples come in
+      // random order inside large faces. Results go to each sample's own index, so the order
+      // changes only the speed.
       const std::size_t begin = static_cast<std::size_t>(chunk) * kChunk;
       const std::size_t count = std::min(n, begin + kChunk) - begin;
       points.resize(count);
       hints.resize(count);
       corners.resize(3 * count);
       for (std::size_t j = 0; j < count; ++j) points[j] = samples.samples[begin + j].point;
-      morton_order(points.data(), count, order, keys);
+      morton_order(points.data(), count, sample_box, order, keys);
       for (std::size_t j = 0; j < count; ++j) {
         const Sample& s = samples.samples[begin + order[j]];
         points[j] = s.point;

@@ -11,26 +11,34 @@
 namespace meshdev {
 namespace {
 
-// The brute-force twin: the code bit by bit, then a stable sort by it.
-std::vector<std::uint32_t> reference_order(const std::vector<Vec3>& p) {
-  Vec3 lo = p[0], hi = p[0];
-  for (const Vec3& x : p) {
-    lo = {std::min(lo.x, x.x), std::min(lo.y, x.y), std::min(lo.z, x.z)};
-    hi = {std::max(hi.x, x.x), std::max(hi.y, x.y), std::max(hi.z, x.z)};
-  }
-  const double scale = 1023.0 / std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+BoundingBox box_of(const std::vector<Vec3>& p) {
+  BoundingBox box;
+  for (const Vec3& x : p) box.extend(x);
+  return box;
+}
+
+// The brute-force twin: each code bit by bit, then a stable sort by the 30 highest bits in which
+// the codes differ.
+std::vector<std::uint32_t> reference_order(const std::vector<Vec3>& p, const BoundingBox& box) {
+  const Vec3 e = box.max - box.min;
+  const double scale = 2097151.0 / std::max({e.x, e.y, e.z});
   std::vector<std::uint64_t> code(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double c[3] = {p[i].x - lo.x, p[i].y - lo.y, p[i].z - lo.z};
+    const double c[3] = {p[i].x - box.min.x, p[i].y - box.min.y, p[i].z - box.min.z};
     for (int axis = 0; axis < 3; ++axis) {
-      const auto cell = static_cast<std::uint64_t>(std::min(c[axis] * scale, 1023.0));
-      for (int bit = 0; bit < 10; ++bit) code[i] |= (cell >> bit & 1u) << (3 * bit + axis);
+      const auto cell = static_cast<std::uint64_t>(std::min(c[axis] * scale, 2097151.0));
+      for (int bit = 0; bit < 21; ++bit) code[i] |= (cell >> bit & 1u) << (3 * bit + axis);
     }
   }
+  const auto [least, most] = std::minmax_element(code.begin(), code.end());
+  int top = 63;
+  while (top > 0 && ((*least ^ *most) >> top & 1u) == 0) --top;
+  const int low = std::max(0, top - 29);
   std::vector<std::uint32_t> order(p.size());
   std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return code[a] < code[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return (code[a] >> low & 0x3fffffffu) < (code[b] >> low & 0x3fffffffu);
+  });
   return order;
 }
 
@@ -43,8 +51,14 @@ TEST(MortonOrder, EqualsTheBitByBitReferenceOnRandomClouds) {
     std::vector<Vec3> p(n);
     for (Vec3& x : p) x = {u(rng), u(rng), 0.25 * u(rng)};
     p[n / 2] = p[0];  // equal codes keep their input order
-    morton_order(p.data(), n, order, keys);
-    EXPECT_EQ(order, reference_order(p)) << n;
+    const BoundingBox box = box_of(p);
+    morton_order(p.data(), n, box, order, keys);
+    EXPECT_EQ(order, reference_order(p, box)) << n;
+    // A run inside a larger box: codes share their top bits, the sort uses the next 30.
+    BoundingBox wide = box;
+    wide.extend({1e3, 1e3, 1e3});
+    morton_order(p.data(), n, wide, order, keys);
+    EXPECT_EQ(order, reference_order(p, wide)) << n;
   }
 }
 
@@ -55,14 +69,28 @@ TEST(MortonOrder, VisitsAGridCellByCell) {
     for (int x = 0; x < 4; ++x) p.push_back({double(x), double(y), 0.0});
   std::vector<std::uint32_t> order;
   std::vector<std::uint64_t> keys;
-  morton_order(p.data(), p.size(), order, keys);
+  morton_order(p.data(), p.size(), box_of(p), order, keys);
   const std::vector<std::uint32_t> z = {0, 1, 4, 5, 2, 3, 6, 7, 8, 9, 12, 13, 10, 11, 14, 15};
   EXPECT_EQ(order, z);
-  // Points already in that order are left as they are.
+}
+
+// What compute_deviations relies on to leave sorted samples alone: a run cut from a set sorted
+// along the curve of the same box is already in order.
+TEST(MortonOrder, RunsOfASortedSetAreLeftAsTheyAre) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> p(20000);
+  for (Vec3& x : p) x = {u(rng), 2 * u(rng), u(rng)};
+  const BoundingBox box = box_of(p);
+  std::vector<std::uint32_t> order;
+  std::vector<std::uint64_t> keys;
+  morton_order(p.data(), p.size(), box, order, keys);
   std::vector<Vec3> sorted;
-  for (std::uint32_t i : z) sorted.push_back(p[i]);
-  morton_order(sorted.data(), sorted.size(), order, keys);
-  for (std::uint32_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
+  for (std::uint32_t i : order) sorted.push_back(p[i]);
+  for (std::size_t begin : {0u, 1024u, 7000u, 18976u}) {
+    morton_order(sorted.data() + begin, 1024, box, order, keys);
+    for (std::uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i) << begin;
+  }
 }
 
 TEST(MortonOrder, IdentityForOnePointOrANonFiniteBox) {
@@ -74,7 +102,14 @@ TEST(MortonOrder, IdentityForOnePointOrANonFiniteBox) {
        {std::vector<Vec3>{{1, 2, 3}, {1, 2, 3}, {1, 2, 3}},
         std::vector<Vec3>{{nan, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
         std::vector<Vec3>{{0, 0, 0}, {inf, 0, 0}, {0, 1, 0}}}) {
-    morton_order(p.data(), p.size(), order, keys);
+    BoundingBox box;
+    box.min = p[0];
+    box.max = p[0];
+    for (const Vec3& x : p) {
+      box.min = {std::min(box.min.x, x.x), std::min(box.min.y, x.y), std::min(box.min.z, x.z)};
+      box.max = {std::max(box.max.x, x.x), std::max(box.max.y, x.y), std::max(box.max.z, x.z)};
+    }
+    morton_order(p.data(), p.size(), box, order, keys);
     ASSERT_EQ(order.size(), p.size());
     for (std::uint32_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
   }
