@@ -56,6 +56,25 @@ struct TieRange {
 
 constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutive = coherent)
 
+// The bounding box of the sample points (min and max are exact in any order, so the threads'
+// boxes merge in any order).
+BoundingBox sample_bounds(const SampleSet& samples, int threads) {
+  BoundingBox box;
+  const auto n = static_cast<std::int64_t>(samples.samples.size());
+#pragma omp parallel num_threads(threads)
+  {
+    BoundingBox local;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t i = 0; i < n; ++i) local.extend(samples.samples[i].point);
+#pragma omp critical(meshdev_sample_bounds)
+    if (!local.empty()) {
+      box.extend(local.min);
+      box.extend(local.max);
+    }
+  }
+  return box;
+}
+
 }  // namespace
 
 QueryHint sample_hint(const TriMesh& reference, const Sample& s, Vec3 corners[3]) {
@@ -101,20 +120,8 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   }
   if (!texture.empty()) assert(reference.texture && target.texture && uv_ref && uv_tgt);
   std::vector<double> uv_gap(cohen.empty() ? 0 : n, 0.0);
-  // The samples' box: the grid of the Morton order each chunk is queried in.
-  double x0 = 1e300, y0 = 1e300, z0 = 1e300, x1 = -1e300, y1 = -1e300, z1 = -1e300;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(min           \
-                                                                         : x0, y0, z0) \
-    reduction(max                                                                      \
-              : x1, y1, z1)
-  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
-    const Vec3& p = samples.samples[i].point;
-    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), z0 = std::min(z0, p.z);
-    x1 = std::max(x1, p.x), y1 = std::max(y1, p.y), z1 = std::max(z1, p.z);
-  }
-  BoundingBox sample_box;
-  sample_box.min = {x0, y0, z0};
-  sample_box.max = {x1, y1, z1};
+  // The grid of the Morton order each chunk is queried in.
+  const BoundingBox sample_box = sample_bounds(samples, threads);
 
 #pragma omp parallel num_threads(threads)
   {
