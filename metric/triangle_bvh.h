@@ -2,13 +2,14 @@
 // A 4-wide bounding-volume hierarchy over a triangle mesh for exact nearest-point queries with
 // ties.
 //
-// Build: binned SAH (16 bins) on triangle centroids into a binary tree with leaves of at most 4
-//        triangles, then collapsed into 4-wide nodes (the inner child of largest area is opened
-//        until a node has 4 children). Boxes and triangle corners are stored in single precision,
-//        4 per block (structure of arrays), in a frame centred on the mesh and scaled to [-1, 1].
-//        The binning works on face records (float box rounded outwards, centre, index) that are
-//        partitioned in place, with SSE box unions. O(F log F) time, subtrees and leaf blocks
-//        built in parallel (OpenMP); memory_bytes() is about 55-62 bytes per face.
+// Build: binned SAH (16 bins) on the centres of the faces' boxes into a binary tree with leaves
+//        of at most 4 triangles, then collapsed into 4-wide nodes (the inner child of largest
+//        area is opened until a node has 4 children). Boxes and triangle corners are stored in
+//        single precision, 4 per block (structure of arrays), in a frame centred on the mesh and
+//        scaled to [-1, 1]. The binning works on 32-byte face records (float box rounded
+//        outwards, face index) partitioned in place, with SSE box unions. O(F log F) time,
+//        subtrees and leaf blocks built in parallel (OpenMP); memory_bytes() is about 55-62
+//        bytes per face.
 // Query: depth-first, nearer child first, starting from the upper bound of hint.start_face. Four
 //        boxes or four triangles are tested per step with SSE (metric/simd4.h). A box or a
 //        triangle is skipped only when a conservative single-precision lower bound on its
