@@ -83,8 +83,9 @@ struct Box {
 
 // One face during the build, 32 bytes: its box in the float frame, rounded outwards (so node
 // boxes made of them are conservative), with the face index's bits in the fourth lane of lo
-// (the box unions compute that lane and never read it). The build partitions these in place, so
-// every pass over a range reads memory in order. lo + hi, twice the box centre, places the face.
+// (the SSE box unions and centre sums carry that lane along and never read it). The build
+// partitions these in place, so every pass over a range reads memory in order. lo + hi, twice
+// the box centre, places the face.
 struct alignas(16) Prim {
   float lo[4];
   float hi[4];  // lane 3: 0
@@ -333,7 +334,7 @@ void TriangleBvh::build(int threads) {
         for (;;) {
           while (i < j && bin_at[i] < best_split) ++i;
           while (i < j && bin_at[j - 1] >= best_split) --j;
-          if (i + 1 >= j) break;
+          if (i >= j) break;  // (i < j here means bin_at[i] >= best_split > bin_at[j - 1])
           std::swap(first[i++], first[--j]);
         }
         mid = i;
