@@ -11,6 +11,7 @@
 #include <memory>
 #include <numeric>
 
+#include "metric/plane_bounds.h"
 #include "metric/simd4.h"
 
 namespace meshdev {
@@ -197,7 +198,7 @@ inline void cross3(const F4 a[3], const F4 b[3], F4 out[3]) {
 }  // namespace
 
 TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
-    : eval_(target, ties, /*with_spheres=*/false) {
+    : eval_(target, ties, /*with_spheres=*/false), kernels_(&plane_kernels(simd_level())) {
   build(threads);
 }
 
@@ -638,23 +639,18 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
 // Batches of coherent queries (packets).
 
 struct TriangleBvh::PacketScratch {
-  // Four candidate faces' supporting planes in the float frame: unit normal n and offset d
-  // (h = n.p - d is the signed distance to the plane), and per edge the outward unit normal m_e
-  // within the plane and its offset (out_e = m_e.p - md_e is the distance beyond the edge's
-  // line). Computed in double, stored rounded to float. Faces the bound must not cull have all
-  // zeros (bound 0); empty lanes have d = -inf (bound +inf).
-  struct alignas(16) Planes {
-    float n[3][4];
-    float d[4];
-    float m[3][3][4];
-    float md[3][4];
-    std::uint32_t face[4];
-  };
   double q[kPacketSize][3];
   float qf[kPacketSize][3];
   double slack[kPacketSize];
   std::vector<std::uint32_t> faces;
-  std::vector<Planes> planes;
+  // The candidates' supporting planes in the float frame, as kPlaneRows rows of `stride` floats
+  // (metric/plane_bounds.h): unit normal n and offset d (h = n.p - d is the signed distance to
+  // the plane), and per edge the outward unit normal m_e within the plane and its offset
+  // (out_e = m_e.p - md_e is the distance beyond the edge's line). Computed in double, stored
+  // rounded to float. Faces the bound must not cull have all zeros (bound 0); padding lanes
+  // have d = -inf (bound +inf).
+  std::vector<float> rows;
+  std::size_t stride = 0;
   std::vector<float> bound;
   std::vector<std::uint32_t> survivors;
   std::vector<SurfaceHit> ties, center_ties;
@@ -854,43 +850,32 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
 
   // The candidates' planes, from the cache (consecutive packets share most of their faces).
   const std::size_t candidates = scratch.faces.size();
-  scratch.planes.resize((candidates + 3) / 4);
+  const std::size_t stride = (candidates + kPlaneLanes - 1) / kPlaneLanes * kPlaneLanes;
+  scratch.stride = stride;
+  scratch.rows.resize(kPlaneRows * stride);
+  float* rows = scratch.rows.data();
   float max_offset = 0.0f;
-  for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
-    PacketScratch::Planes& pl = scratch.planes[b];
-    for (int lane = 0; lane < 4; ++lane) {
-      const std::size_t idx = 4 * b + lane;
-      if (idx >= candidates) {  // empty lane: bound +inf
-        pl.face[lane] = kNoFace;
-        pl.d[lane] = -kInf;
-        for (int a = 0; a < 3; ++a) pl.n[a][lane] = 0.0f;
-        for (int e = 0; e < 3; ++e) {
-          pl.md[e][lane] = 0.0f;
-          for (int a = 0; a < 3; ++a) pl.m[e][a][lane] = 0.0f;
-        }
-        continue;
-      }
-      const std::uint32_t face = scratch.faces[idx];
-      const FacePlanes& f = face_planes(face, scratch);
-      max_offset = std::max(max_offset, f.max_offset);
-      pl.face[lane] = face;
-      pl.d[lane] = f.d;
-      for (int a = 0; a < 3; ++a) pl.n[a][lane] = f.n[a];
-      for (int e = 0; e < 3; ++e) {
-        pl.md[e][lane] = f.md[e];
-        for (int a = 0; a < 3; ++a) pl.m[e][a][lane] = f.m[e][a];
-      }
+  for (std::size_t idx = 0; idx < candidates; ++idx) {
+    const FacePlanes& f = face_planes(scratch.faces[idx], scratch);
+    max_offset = std::max(max_offset, f.max_offset);
+    for (int a = 0; a < 3; ++a) rows[(kNx + a) * stride + idx] = f.n[a];
+    rows[kD * stride + idx] = f.d;
+    for (int e = 0; e < 3; ++e) {
+      for (int a = 0; a < 3; ++a) rows[(kM0x + 4 * e + a) * stride + idx] = f.m[e][a];
+      rows[(kMd0 + 4 * e) * stride + idx] = f.md[e];
     }
   }
+  for (int r = 0; r < kPlaneRows; ++r)  // padding lanes: bound +inf
+    std::fill(rows + r * stride + candidates, rows + (r + 1) * stride, r == kD ? -kInf : 0.0f);
 
   // Each query: float lower bounds sqrt(h^2 + max(out_e, 0)^2) of all candidates, then the
   // survivors evaluated exactly, smallest bound first, until the bound passes the tie limit.
   // The bound's rounding is at most about 6 u (|p|_1 + max offset) (coefficients rounded to
-  // float, three products and sums) plus 1e-9 (|p|_1 + 2) from the double computation of
-  // normals of faces with kappa <= kMaxKappa: the margin 16 u (|p|_1 + max offset + 2) covers
-  // both with room.
-  scratch.bound.resize(4 * scratch.planes.size());
-  const F4 zero = F4::splat(0.0f);
+  // float, three products and sums; fewer roundings where the kernel fuses multiply-adds) plus
+  // 1e-9 (|p|_1 + 2) from the double computation of normals of faces with kappa <= kMaxKappa:
+  // the margin 16 u (|p|_1 + max offset + 2) covers both with room.
+  scratch.bound.resize(stride);
+  scratch.survivors.resize(stride);
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0 && out.hits.size() >= BatchHits::kMaxHits) return k;  // answered k of n
     if (k == c) {
@@ -907,36 +892,9 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     auto cutoff_of = [&](double r) {  // r: a reach
       return round_up((r + margin) * (r + margin) * (1.0 + 1e-5));
     };
-    const F4 px = F4::splat(qf[0]), py = F4::splat(qf[1]), pz = F4::splat(qf[2]);
     // All bounds, and the smallest (NaN bounds become 0: evaluated first, never culled).
-    F4 smallest = F4::splat(kInf);
-    for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
-      const PacketScratch::Planes& pl = scratch.planes[b];
-      auto plane = [&](const float nx[4], const float ny[4], const float nz[4], const float* d) {
-        return F4::load(nx) * px + F4::load(ny) * py + F4::load(nz) * pz - F4::load(d);
-      };
-      const F4 h = plane(pl.n[0], pl.n[1], pl.n[2], pl.d);
-      const F4 o0 = plane(pl.m[0][0], pl.m[0][1], pl.m[0][2], pl.md[0]);
-      const F4 o1 = plane(pl.m[1][0], pl.m[1][1], pl.m[1][2], pl.md[1]);
-      const F4 o2 = plane(pl.m[2][0], pl.m[2][1], pl.m[2][2], pl.md[2]);
-      const F4 o = max(max(max(o0, o1), o2), zero);
-      const F4 b2 = max(h * h + o * o, zero);  // NaN -> 0 (max returns its second operand)
-      smallest = min(b2, smallest);
-      simd::store(scratch.bound.data() + 4 * b, b2);
-    }
-    float least[4];
-    simd::store(least, smallest);
-    const float first_bound = std::min({least[0], least[1], least[2], least[3]});
-    std::size_t first_idx = 0;
-    for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
-      const int equal =
-          simd::equal_mask(F4::load(scratch.bound.data() + 4 * b), F4::splat(first_bound));
-      if (equal != 0) {
-        first_idx = 4 * b + static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(equal)));
-        break;
-      }
-    }
-    if (first_idx >= candidates) first_idx = 0;  // every bound infinite: any face will do
+    const std::size_t first_idx =
+        kernels_->bounds(rows, stride, candidates, qf, scratch.bound.data());
 
     // The face of smallest bound first: its exact distance gives the tie limit, usually final.
     std::vector<SurfaceHit>& ties = scratch.ties;
@@ -946,18 +904,8 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     double limit = eval_.limit_sq(best_sq);
     ties.push_back(first);
     float cutoff = cutoff_of(std::min(initial_reach[k], reach(k, limit)));
-    const F4 cut = F4::splat(cutoff);
-    scratch.survivors.clear();
-    for (std::size_t b = 0; b < scratch.planes.size(); ++b) {
-      int keep = ~greater_mask(F4::load(scratch.bound.data() + 4 * b), cut) & 0xf;
-      while (keep != 0) {
-        const int lane = __builtin_ctz(static_cast<unsigned>(keep));
-        keep &= keep - 1;
-        const auto idx = static_cast<std::uint32_t>(4 * b + lane);
-        if (idx != first_idx && idx < candidates) scratch.survivors.push_back(idx);
-      }
-    }
-    std::size_t left = scratch.survivors.size();
+    std::size_t left = kernels_->survivors(scratch.bound.data(), candidates, cutoff, first_idx,
+                                           scratch.survivors.data());
     while (left > 0) {
       std::size_t pick = 0;
       for (std::size_t s = 1; s < left; ++s)

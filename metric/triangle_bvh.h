@@ -37,6 +37,7 @@
 #include <vector>
 
 #include "metric/nearest_point.h"
+#include "metric/plane_bounds.h"
 
 namespace meshdev {
 
@@ -104,12 +105,13 @@ class TriangleBvh final : public NearestPointIndex {
               std::vector<std::uint32_t>& faces) const;
 
   detail::FaceEvaluator eval_;
-  Vec3 origin_;               // centre of the target's bounding box
-  double scale_ = 1;          // float frame = (x - origin_) * scale_
-  bool cull_scale_ = true;    // false: the mesh is too small or large to cull (see kMinExtent)
-  double corner_error_ = 0;   // max |float corner - exact corner| in the float frame
-  double packet_extent_ = 0;  // largest packet box diagonal (float frame) for find_batch
-  std::uint32_t root_ = 0;    // child ref of the root
+  const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)
+  Vec3 origin_;                  // centre of the target's bounding box
+  double scale_ = 1;             // float frame = (x - origin_) * scale_
+  bool cull_scale_ = true;       // false: the mesh is too small or large to cull (see kMinExtent)
+  double corner_error_ = 0;      // max |float corner - exact corner| in the float frame
+  double packet_extent_ = 0;     // largest packet box diagonal (float frame) for find_batch
+  std::uint32_t root_ = 0;       // child ref of the root
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;
   int depth_ = 0;

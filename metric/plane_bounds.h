@@ -1,0 +1,58 @@
+#pragma once
+// Float lower bounds on the distances from one point to many triangles, from each triangle's
+// supporting plane and edge half-planes: the culling step of a packet query
+// (metric/triangle_bvh.cpp, "Packets of coherent queries" in docs/metric.md). The kernels are
+// SIMD, with the instruction set picked at run time: SSE2 (any x86-64; plain C++ elsewhere),
+// AVX2 + FMA where the CPU and OS support it, AVX-512F on request. All variants compute the same
+// formula; they differ only in rounding (FMA rounds less often), which the caller's margin
+// covers, so the BVH's answers do not depend on the variant.
+#include <cstddef>
+#include <cstdint>
+
+namespace meshdev {
+
+// Rows of the planes' structure of arrays (row r of candidate i at rows[r * stride + i]):
+// unit normal n (kNx..kNz) and offset d, so that h = n.p - d is the signed distance to the plane;
+// for each edge e the outward unit normal m_e within the plane and its offset md_e, so that
+// out_e = m_e.p - md_e is the distance beyond the edge's line. Padding lanes (count <= i <
+// stride) hold n = m_e = md_e = 0 and d = -inf, which gives them a bound of +inf.
+enum PlaneRow : int { kNx, kNy, kNz, kD, kM0x, kM0y, kM0z, kMd0 };  // edge e: kM0x + 4 e ...
+constexpr int kPlaneRows = 16;
+constexpr std::size_t kPlaneLanes = 16;  // stride must be a multiple of this (widest kernel)
+
+enum class SimdLevel { kBaseline, kAvx2, kAvx512 };
+
+// The kernels of one instruction set.
+struct PlaneKernels {
+  // bound[i] = max(h^2 + max(out_0, out_1, out_2, 0)^2, 0), the square of a lower bound on the
+  // distance from q to candidate i (all in the float frame), for i < count rounded up to the
+  // kernel's width (padding lanes: +inf); a NaN bound is stored as 0 (never culled). Returns the
+  // index of the smallest bound (the first of equal ones; 0 if all are +inf).
+  // Preconditions: stride a multiple of kPlaneLanes, stride >= count > 0; q finite. O(count).
+  std::size_t (*bounds)(const float* rows, std::size_t stride, std::size_t count, const float q[3],
+                        float* bound);
+  // Writes to `out` the indices i < count, i != skip, with bound[i] <= cutoff, in increasing
+  // order, and returns how many. bound: as written by `bounds` of the same kernels. O(count).
+  std::size_t (*survivors)(const float* bound, std::size_t count, float cutoff, std::size_t skip,
+                           std::uint32_t* out);
+};
+
+// The kernels' instruction set: AVX2 if this build has it and the CPU and OS support it, else
+// the baseline. AVX-512 only on request: the environment variable MESHDEV_SIMD (baseline, avx2 or
+// avx512; a level the CPU lacks falls back to the default) chooses. Decided once, at first call.
+// Throws InvalidInput for any other value of MESHDEV_SIMD.
+SimdLevel simd_level();
+// True if this build has the kernels of `level` and the CPU and OS can run them.
+bool simd_supported(SimdLevel level);
+const char* simd_level_name(SimdLevel level);
+// The kernels of `level`; precondition: simd_supported(level).
+const PlaneKernels& plane_kernels(SimdLevel level);
+
+namespace detail {
+// The x86 kernels, each in its own translation unit compiled for its instruction set
+// (plane_bounds_avx2.cpp, plane_bounds_avx512.cpp); only called after the CPU check.
+extern const PlaneKernels kPlaneKernelsAvx2;
+extern const PlaneKernels kPlaneKernelsAvx512;
+}  // namespace detail
+
+}  // namespace meshdev

@@ -1,0 +1,158 @@
+#include "metric/plane_bounds.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "metric/closest_point_triangle.h"
+
+namespace meshdev {
+namespace {
+
+constexpr double kUnit = 0x1p-24;  // float's unit roundoff
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// Candidates for one point: planes of random triangles (as TriangleBvh::face_planes makes them),
+// some all zeros (never culled), stored as kPlaneRows rows of `stride` floats with padding.
+struct Candidates {
+  std::vector<Vec3> corners;  // 3 per candidate
+  std::vector<float> rows;
+  std::size_t count = 0, stride = 0;
+  double max_offset = 0;
+};
+
+Candidates make_candidates(std::mt19937_64& rng, std::size_t count) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Candidates c;
+  c.count = count;
+  c.stride = (count + kPlaneLanes - 1) / kPlaneLanes * kPlaneLanes;
+  c.rows.assign(kPlaneRows * c.stride, 0.0f);
+  for (std::size_t i = 0; i < c.stride; ++i) c.rows[kD * c.stride + i] = i < count ? 0.0f : -kInf;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec3 centre{4 * u(rng), 4 * u(rng), 4 * u(rng)};
+    Vec3 v[3];
+    for (Vec3& x : v) x = centre + Vec3{u(rng), u(rng), u(rng)};
+    c.corners.insert(c.corners.end(), v, v + 3);
+    if (i % 7 == 3) continue;  // all zeros: bound 0
+    const Vec3 n = cross(v[1] - v[0], v[2] - v[0]);
+    const Vec3 unit = (1.0 / norm(n)) * n;
+    auto put = [&](int row, const Vec3& normal, double offset) {
+      for (int a = 0; a < 3; ++a) c.rows[(row + a) * c.stride + i] = static_cast<float>(normal[a]);
+      c.rows[(row + 3) * c.stride + i] = static_cast<float>(offset);
+      c.max_offset = std::max(c.max_offset, std::fabs(offset));
+    };
+    put(kNx, unit, dot(unit, v[0]));
+    for (int e = 0; e < 3; ++e) {
+      const Vec3 m = cross(v[(e + 1) % 3] - v[e], unit);
+      const Vec3 mu = (1.0 / norm(m)) * m;
+      put(kM0x + 4 * e, mu, dot(mu, v[e]));
+    }
+  }
+  return c;
+}
+
+// The brute-force twin: the same formula in double from the same float coefficients.
+double twin_bound(const Candidates& c, std::size_t i, const float q[3]) {
+  auto plane = [&](int row) {
+    double s = -static_cast<double>(c.rows[(row + 3) * c.stride + i]);
+    for (int a = 0; a < 3; ++a) s += static_cast<double>(c.rows[(row + a) * c.stride + i]) * q[a];
+    return s;
+  };
+  const double h = plane(kNx);
+  const double o = std::max({plane(kM0x), plane(kM0x + 4), plane(kM0x + 8), 0.0});
+  return h * h + o * o;
+}
+
+std::vector<SimdLevel> supported_levels() {
+  std::vector<SimdLevel> levels;
+  for (SimdLevel l : {SimdLevel::kBaseline, SimdLevel::kAvx2, SimdLevel::kAvx512})
+    if (simd_supported(l)) levels.push_back(l);
+  return levels;
+}
+
+TEST(PlaneBounds, EveryKernelEqualsTheDoubleTwinWithinTheMarginAndBoundsTheDistance) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-6.0, 6.0);
+  for (SimdLevel level : supported_levels()) {
+    SCOPED_TRACE(simd_level_name(level));
+    const PlaneKernels& k = plane_kernels(level);
+    for (std::size_t count : {1, 3, 4, 8, 15, 16, 17, 33, 64, 100}) {
+      const Candidates c = make_candidates(rng, count);
+      std::vector<float> bound(c.stride, -1.0f);
+      std::vector<std::uint32_t> kept(c.stride);
+      for (int trial = 0; trial < 20; ++trial) {
+        const float q[3] = {static_cast<float>(u(rng)), static_cast<float>(u(rng)),
+                            static_cast<float>(u(rng))};
+        const Vec3 p{q[0], q[1], q[2]};
+        const std::size_t first = k.bounds(c.rows.data(), c.stride, count, q, bound.data());
+        // The caller's margin (triangle_bvh.cpp, find_packet): 16 u (|q|_1 + max offset + 2).
+        const double margin =
+            16 * kUnit * (std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + c.max_offset + 2);
+        std::size_t least = 0;
+        for (std::size_t i = 0; i < count; ++i) {
+          const double twin = std::sqrt(twin_bound(c, i, q));
+          ASSERT_NEAR(std::sqrt(static_cast<double>(bound[i])), twin, margin) << "candidate " << i;
+          // A lower bound of the exact distance (all-zero planes: 0).
+          const TriangleHit h = closest_point_on_triangle(p, c.corners[3 * i], c.corners[3 * i + 1],
+                                                          c.corners[3 * i + 2]);
+          EXPECT_LE(std::sqrt(static_cast<double>(bound[i])), std::sqrt(h.sq_distance) + margin);
+          if (bound[i] < bound[least]) least = i;
+        }
+        EXPECT_EQ(first, least);  // the first of the smallest
+        // Survivors: the brute-force filter, in index order, without `skip`.
+        const float cutoff = bound[(first + 1) % count] * 1.5f;
+        const std::size_t n = k.survivors(bound.data(), count, cutoff, first, kept.data());
+        std::vector<std::uint32_t> expected;
+        for (std::size_t i = 0; i < count; ++i)
+          if (i != first && bound[i] <= cutoff) expected.push_back(static_cast<std::uint32_t>(i));
+        EXPECT_EQ(std::vector<std::uint32_t>(kept.begin(), kept.begin() + n), expected);
+      }
+    }
+  }
+}
+
+TEST(PlaneBounds, NanBoundsBecomeZeroAndPaddingIsNeverTaken) {
+  for (SimdLevel level : supported_levels()) {
+    SCOPED_TRACE(simd_level_name(level));
+    const PlaneKernels& k = plane_kernels(level);
+    std::mt19937_64 rng(3);
+    Candidates c = make_candidates(rng, 5);
+    c.rows[kNx * c.stride + 2] = std::numeric_limits<float>::quiet_NaN();
+    std::vector<float> bound(c.stride);
+    const float q[3] = {0.5f, -0.25f, 2.0f};
+    EXPECT_EQ(k.bounds(c.rows.data(), c.stride, c.count, q, bound.data()), 2u);
+    EXPECT_EQ(bound[2], 0.0f);
+    // Every real bound +inf: the first candidate, never a padding lane.
+    for (std::size_t i = 0; i < c.count; ++i) c.rows[kD * c.stride + i] = -kInf;
+    for (int r = 0; r < kPlaneRows; ++r)
+      if (r != kD)
+        for (std::size_t i = 0; i < c.count; ++i) c.rows[r * c.stride + i] = 0.0f;
+    EXPECT_EQ(k.bounds(c.rows.data(), c.stride, c.count, q, bound.data()), 0u);
+    std::vector<std::uint32_t> kept(c.stride);
+    EXPECT_EQ(k.survivors(bound.data(), c.count, kInf, 99, kept.data()), c.count);
+  }
+}
+
+TEST(PlaneBounds, TheEnvironmentChoosesTheLevel) {
+  const char* env = std::getenv("MESHDEV_SIMD");
+  const std::string want = env != nullptr ? env : "";
+  const SimdLevel level = simd_level();
+  EXPECT_TRUE(simd_supported(level));
+  if (want == "baseline") {
+    EXPECT_EQ(level, SimdLevel::kBaseline);
+  } else if (want == "avx512" && simd_supported(SimdLevel::kAvx512)) {
+    EXPECT_EQ(level, SimdLevel::kAvx512);
+  } else {  // AVX-512 only on request
+    EXPECT_EQ(level, simd_supported(SimdLevel::kAvx2) ? SimdLevel::kAvx2 : SimdLevel::kBaseline);
+  }
+  std::printf("plane bounds: %s\n", simd_level_name(level));
+}
+
+}  // namespace
+}  // namespace meshdev
