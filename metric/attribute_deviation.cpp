@@ -14,12 +14,41 @@
 namespace meshdev {
 namespace {
 
-// Measures grouped by the channel they compare, so each channel is interpolated once per point.
+// The forms (metric/attributes.h) a list of measures compares values in: each distinct form is
+// computed once per value, and measure k reads form form_of[k].
+struct FormSet {
+  ValueForm forms[3];
+  int count = 0;
+  std::vector<int> form_of;
+
+  void add(MeasureKind kind) {
+    const ValueForm f = value_form(kind);
+    int i = 0;
+    while (i < count && forms[i] != f) ++i;
+    if (i == count) forms[count++] = f;
+    form_of.push_back(i);
+  }
+  // Points out[i] at `value` in form i (the value itself for kRaw, else a transform in buf[i]).
+  void transform(const double* value, int dim, double buf[3][16], const double* out[3]) const {
+    for (int i = 0; i < count; ++i) {
+      if (forms[i] == ValueForm::kRaw) {
+        out[i] = value;
+      } else {
+        to_form(forms[i], value, dim, buf[i]);
+        out[i] = buf[i];
+      }
+    }
+  }
+};
+
+// Measures grouped by the channel they compare, so each channel is interpolated (and normalised
+// or converted to CIELAB) once per point.
 struct ChannelGroup {
   const AttributeChannel* reference = nullptr;
   const AttributeChannel* target = nullptr;
   std::vector<std::size_t> measures;
   std::vector<MeasureKind> kinds;  // measures[k]'s kind
+  FormSet forms;
 };
 
 std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const PreparedMesh& target,
@@ -34,11 +63,12 @@ std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const Pr
     auto it = std::find_if(groups.begin(), groups.end(),
                            [&](const ChannelGroup& g) { return g.reference == ca; });
     if (it == groups.end()) {
-      groups.push_back({ca, cb, {}, {}});
+      groups.push_back({ca, cb, {}, {}, {}});
       it = groups.end() - 1;
     }
     it->measures.push_back(m);
     it->kinds.push_back(measures[m].kind);
+    it->forms.add(measures[m].kind);
   }
   return groups;
 }
@@ -109,6 +139,8 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
     if (measures[m].kind == MeasureKind::kCohenTexture) cohen.push_back(m);
     if (is_texture_color(measures[m].kind)) texture.push_back(m);
   }
+  FormSet texture_forms;
+  for (std::size_t m : texture) texture_forms.add(measures[m].kind);
   const AttributeChannel* uv_ref = reference.channel("texcoord");
   const AttributeChannel* uv_tgt = target.channel("texcoord");
   std::unique_ptr<UvIndex> uv_index;
@@ -132,7 +164,9 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
     std::vector<std::uint64_t> keys;
     std::vector<double> best;
     std::vector<UvHit> uv_hits;
-    double fa[16], fb[16];
+    double fa[16], fb[16];                // channel values at p and at p'
+    double form_a[3][16], form_b[3][16];  // ... normalised or in CIELAB
+    const double *at_a[3], *at_b[3];      // each form's values
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
       // The chunk's nearest points in one batch, in Morton order of the samples' positions
@@ -167,21 +201,25 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
           out.values[0][i] = batch.distance[j - from];
 
           for (const ChannelGroup& g : groups) {
+            const int dim = g.reference->dim;
             interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
+            g.forms.transform(fa, dim, form_a, at_a);
+            auto each_measure = [&](const SurfaceHit& h, auto&& use) {
+              interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
+              g.forms.transform(fb, dim, form_b, at_b);
+              for (std::size_t k = 0; k < g.measures.size(); ++k) {
+                const int f = g.forms.form_of[k];
+                use(k, form_distance(g.kinds[k], at_a[f], at_b[f], dim));
+              }
+            };
             if (ties.size() == 1) {  // the common case: no minimum to take
-              interpolate(*g.target, tgt, ties[0].face, ties[0].bary, kNoFace, fb);
-              for (std::size_t k = 0; k < g.measures.size(); ++k)
-                out.values[g.measures[k]][i] =
-                    attribute_distance(g.kinds[k], fa, fb, g.reference->dim);
+              each_measure(ties[0],
+                           [&](std::size_t k, double d) { out.values[g.measures[k]][i] = d; });
               continue;
             }
             best.assign(g.measures.size(), std::numeric_limits<double>::infinity());
-            for (const SurfaceHit& h : ties) {
-              interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
-              for (std::size_t k = 0; k < g.measures.size(); ++k)
-                best[k] = std::min(best[k], attribute_distance(measures[g.measures[k]].kind, fa, fb,
-                                                               g.reference->dim));
-            }
+            for (const SurfaceHit& h : ties)
+              each_measure(h, [&](std::size_t k, double d) { best[k] = std::min(best[k], d); });
             for (std::size_t k = 0; k < g.measures.size(); ++k)
               out.values[g.measures[k]][i] = best[k];
           }
@@ -199,14 +237,18 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
           if (!texture.empty()) {  // texture colours at the UVs of p and p', minimum over ties
             const Vec3 ca = sample_bilinear(*reference.texture, uv[0], uv[1]);
             const double ta[3] = {ca.x, ca.y, ca.z};
+            texture_forms.transform(ta, 3, form_a, at_a);
             best.assign(texture.size(), std::numeric_limits<double>::infinity());
             for (const SurfaceHit& h : ties) {
               interpolate(*uv_tgt, tgt, h.face, h.bary, kNoFace, fb);
               const Vec3 cb = sample_bilinear(*target.texture, fb[0], fb[1]);
               const double tb[3] = {cb.x, cb.y, cb.z};
-              for (std::size_t k = 0; k < texture.size(); ++k)
-                best[k] =
-                    std::min(best[k], attribute_distance(measures[texture[k]].kind, ta, tb, 3));
+              texture_forms.transform(tb, 3, form_b, at_b);
+              for (std::size_t k = 0; k < texture.size(); ++k) {
+                const int f = texture_forms.form_of[k];
+                best[k] = std::min(best[k],
+                                   form_distance(measures[texture[k]].kind, at_a[f], at_b[f], 3));
+              }
             }
             for (std::size_t k = 0; k < texture.size(); ++k) out.values[texture[k]][i] = best[k];
           }

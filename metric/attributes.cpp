@@ -182,23 +182,62 @@ AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const Attribut
   return plan;
 }
 
-double attribute_distance(MeasureKind kind, const double* x, const double* y, int dim) {
+ValueForm value_form(MeasureKind kind) {
   switch (kind) {
     case MeasureKind::kNormalEuclidean:
-      return norm(unit_or_zero(x) - unit_or_zero(y));
+    case MeasureKind::kNormalAngle:
+      return ValueForm::kUnit;
+    case MeasureKind::kColorDeltaE76:
+    case MeasureKind::kColorDeltaE2000:
+    case MeasureKind::kTextureColorDeltaE76:
+    case MeasureKind::kTextureColorDeltaE2000:
+      return ValueForm::kLab;
+    case MeasureKind::kGeometry:
+    case MeasureKind::kCohenTexture:
+    case MeasureKind::kTextureColorRgb:
+    case MeasureKind::kColorRgb:
+    case MeasureKind::kTexCoord:
+    case MeasureKind::kScalar:
+      break;
+  }
+  return ValueForm::kRaw;
+}
+
+void to_form(ValueForm form, const double* x, int dim, double* out) {
+  Vec3 v;
+  switch (form) {
+    case ValueForm::kUnit:
+      v = unit_or_zero(x);
+      break;
+    case ValueForm::kLab:
+      v = srgb_to_lab({x[0], x[1], x[2]});
+      break;
+    case ValueForm::kRaw:
+      for (int k = 0; k < dim; ++k) out[k] = x[k];
+      return;
+  }
+  out[0] = v.x;
+  out[1] = v.y;
+  out[2] = v.z;
+}
+
+double form_distance(MeasureKind kind, const double* x, const double* y, int dim) {
+  // Unit normals and CIELAB colours have three components.
+  auto vec = [](const double* v) { return Vec3{v[0], v[1], v[2]}; };
+  switch (kind) {
+    case MeasureKind::kNormalEuclidean:
+      return norm(vec(x) - vec(y));
     case MeasureKind::kNormalAngle: {
-      const Vec3 n = unit_or_zero(x), m = unit_or_zero(y);
+      const Vec3 n = vec(x), m = vec(y);
       if (n == Vec3{} || m == Vec3{}) return 90.0;  // undefined normal: no information
       return std::atan2(norm(cross(n, m)), dot(n, m)) * 180.0 / kPi;
     }
     case MeasureKind::kColorDeltaE76:
-      return delta_e76(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
-    case MeasureKind::kColorDeltaE2000:
-      return delta_e2000(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
     case MeasureKind::kTextureColorDeltaE76:
-      return delta_e76(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
+      return delta_e76(vec(x), vec(y));
+    case MeasureKind::kColorDeltaE2000:
     case MeasureKind::kTextureColorDeltaE2000:
-      return delta_e2000(srgb_to_lab({x[0], x[1], x[2]}), srgb_to_lab({y[0], y[1], y[2]}));
+      return delta_e2000(vec(x), vec(y));
     case MeasureKind::kGeometry:
     case MeasureKind::kCohenTexture:
     case MeasureKind::kTextureColorRgb:
@@ -210,6 +249,15 @@ double attribute_distance(MeasureKind kind, const double* x, const double* y, in
   double s = 0.0;
   for (int k = 0; k < dim; ++k) s += (x[k] - y[k]) * (x[k] - y[k]);
   return std::sqrt(s);
+}
+
+double attribute_distance(MeasureKind kind, const double* x, const double* y, int dim) {
+  const ValueForm form = value_form(kind);
+  if (form == ValueForm::kRaw) return form_distance(kind, x, y, dim);
+  double fx[3], fy[3];
+  to_form(form, x, dim, fx);
+  to_form(form, y, dim, fy);
+  return form_distance(kind, fx, fy, dim);
 }
 
 }  // namespace meshdev

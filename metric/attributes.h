@@ -109,7 +109,19 @@ inline void interpolate(const AttributeChannel& channel, const TriMesh& mesh, st
 }
 
 // Deviation between two channel values under `kind` (not kGeometry). O(dim).
+// Equal, bit for bit, to form_distance(kind, to_form(x), to_form(y), dim) with the form of kind.
 double attribute_distance(MeasureKind kind, const double* x, const double* y, int dim);
+
+// What a measure compares of a channel value: the value itself, its unit vector (normals) or its
+// CIELAB colour (ΔE measures). Measures of one channel with one form share the transform, so it
+// is computed once per point (metric/attribute_deviation.cpp).
+enum class ValueForm : std::uint8_t { kRaw, kUnit, kLab };
+ValueForm value_form(MeasureKind kind);
+// Writes `x` (dim components) in `form` to `out`: a copy, the unit vector (0 for a zero normal)
+// or sRGB -> CIELAB; out has room for dim values. O(dim).
+void to_form(ValueForm form, const double* x, int dim, double* out);
+// attribute_distance of two values already in value_form(kind) (from to_form). O(dim).
+double form_distance(MeasureKind kind, const double* x, const double* y, int dim);
 
 // Parses a --normals value: auto, file, uniform (= average), area, angle.
 NormalSource parse_normal_source(const std::string& text);
