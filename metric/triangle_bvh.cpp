@@ -195,10 +195,18 @@ inline void cross3(const F4 a[3], const F4 b[3], F4 out[3]) {
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+// A number for each index built in this process, never reused (the plane caches' owner).
+std::uint64_t next_id() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
 }  // namespace
 
 TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
-    : eval_(target, ties, /*with_spheres=*/false), kernels_(&plane_kernels(simd_level())) {
+    : eval_(target, ties, /*with_spheres=*/false),
+      kernels_(&plane_kernels(simd_level())),
+      id_(next_id()) {
   build(threads);
 }
 
@@ -655,6 +663,7 @@ struct TriangleBvh::PacketScratch {
   std::vector<std::uint32_t> survivors;
   std::vector<SurfaceHit> ties, center_ties;
   std::vector<FacePlanes> cache;  // 2^kCacheBits slots, allocated with the first packet
+  std::uint64_t cache_owner = 0;  // the TriangleBvh::id_ whose planes the cache holds
   float lo[3], hi[3];             // the packet's box (float frame), set while it grows
 };
 
@@ -696,7 +705,14 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
   out.hits.clear();
   out.first[0] = 0;
   out.packet_queries = 0;
-  PacketScratch scratch;
+  // One scratch per thread, kept across batches: consecutive batches of a thread share faces
+  // (the plane cache), and the buffers are not allocated again. A cache filled for another
+  // index (or an earlier one at the same address: ids are never reused) is emptied.
+  static thread_local PacketScratch scratch;
+  if (scratch.cache_owner != id_) {
+    scratch.cache.clear();
+    scratch.cache_owner = id_;
+  }
   std::uint32_t previous = kNoFace;
   auto single = [&](std::size_t i) {
     QueryHint hint = hints != nullptr ? hints[i] : QueryHint{};

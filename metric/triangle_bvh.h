@@ -106,6 +106,7 @@ class TriangleBvh final : public NearestPointIndex {
 
   detail::FaceEvaluator eval_;
   const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)
+  std::uint64_t id_;             // unique in the process: owner of the threads' plane caches
   Vec3 origin_;                  // centre of the target's bounding box
   double scale_ = 1;             // float frame = (x - origin_) * scale_
   bool cull_scale_ = true;       // false: the mesh is too small or large to cull (see kMinExtent)
