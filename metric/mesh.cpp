@@ -32,13 +32,6 @@ AttributeChannel& TriMesh::add_channel(std::string name, AttributeKind kind, Sto
   return channels.back();
 }
 
-void BoundingBox::extend(const Vec3& p) {
-  for (int k = 0; k < 3; ++k) {
-    if (p[k] < min[k]) min[k] = p[k];
-    if (p[k] > max[k]) max[k] = p[k];
-  }
-}
-
 double BoundingBox::diagonal() const {
   return empty() ? 0.0 : norm(max - min);
 }

@@ -76,7 +76,12 @@ struct BoundingBox {
   Vec3 max{-1e300, -1e300, -1e300};
 
   bool empty() const { return min.x > max.x; }
-  void extend(const Vec3& p);
+  void extend(const Vec3& p) {  // NaN coordinates are ignored
+    for (int k = 0; k < 3; ++k) {
+      if (p[k] < min[k]) min[k] = p[k];
+      if (p[k] > max[k]) max[k] = p[k];
+    }
+  }
   double diagonal() const;  // 0 for an empty box
 };
 

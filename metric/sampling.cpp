@@ -259,10 +259,18 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
       step = length > 0.0 ? 0.5 * length / static_cast<double>(target) : 1.0;
     }
   }
-  if (o.faces == FaceSampling::kScanConversion && scan_total(mesh, step) > kMaxSamples)
+  const std::size_t scan_count =
+      o.faces == FaceSampling::kScanConversion ? scan_total(mesh, step) : 0;
+  if (scan_count > kMaxSamples)
     throw InvalidInput("the sampling step " + std::to_string(step) +
                        " would create more than 2^31 samples; use a larger step");
   set.step = needs_step ? step : 0.0;
+  // Room for every vertex and face sample at once (Monte Carlo makes at most target + faces),
+  // so the set is not copied as it grows.
+  const std::size_t expected =
+      (o.vertices ? mesh.positions.size() : 0) + scan_count +
+      (o.faces == FaceSampling::kMonteCarlo ? target + mesh.faces.size() : 0);
+  if (expected <= kMaxSamples) set.samples.reserve(expected);
 
   if (o.vertices) add_vertex_samples(mesh, set);
   if (o.edges) add_edge_samples(mesh, step, set);
