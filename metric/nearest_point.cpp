@@ -116,8 +116,8 @@ SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const Quer
 }
 
 double FaceEvaluator::limit_sq(double best_sq) const {
-  const double limit = std::sqrt(best_sq) * (1.0 + tie_relative) + tie_absolute;
-  return limit * limit;
+  const double l = limit(std::sqrt(best_sq));
+  return l * l;
 }
 
 void keep_ties(std::vector<SurfaceHit>& ties, double limit_sq) {

@@ -121,7 +121,9 @@ struct FaceEvaluator {
 
   FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
-  // Squared tie limit for a minimum squared distance.
+  // Tie limit (not squared) for a minimum distance `best` (not squared).
+  double limit(double best) const { return best * (1.0 + tie_relative) + tie_absolute; }
+  // Squared tie limit for a minimum squared distance: limit(sqrt(best_sq))^2.
   double limit_sq(double best_sq) const;
   // True if face cannot lie within distance `limit` (not squared) of p. Conservative: never
   // true for a face the exact test would keep.

@@ -523,9 +523,9 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
   // Culling radii in the float frame, enlarged to cover the query's and the corners' rounding
   // and the rounding of the float tests themselves (relative, far below 1e-6).
   float box_limit2 = kInf, leaf_limit = kInf;
-  auto update_radii = [&] {
+  auto update_radii = [&](double limit_dist) {  // the tie limit, not squared
     if (!cull) return;
-    const double r = std::max(std::sqrt(limit), floor_dist) * scale_ + slack;
+    const double r = std::max(limit_dist, floor_dist) * scale_ + slack;
     box_limit2 = round_up(r * r * (1.0 + 1e-5));
     leaf_limit = round_up(r * (1.0 + 1e-6));
   };
@@ -535,8 +535,9 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
     if (h.sq_distance > limit) return;
     if (h.sq_distance < best_sq) {
       best_sq = h.sq_distance;
-      limit = eval_.limit_sq(best_sq);
-      update_radii();
+      const double l = eval_.limit(std::sqrt(best_sq));
+      limit = l * l;  // = eval_.limit_sq(best_sq)
+      update_radii(l);
     }
     ties.push_back(h);
   };
@@ -839,18 +840,18 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
 
   // Each query's reach in the float frame: the tie limit of that upper bound (1e-9 more for the
   // rounding of computed distances), at least the identical-triangle check's, plus the slack.
+  // Limits here are distances, not squared (no square root of a square on the way).
   double separation[kPacketSize];
-  auto reach = [&](std::size_t k, double limit_sq) {
+  auto reach = [&](std::size_t k, double limit) {
     const double floor = hint_of(k).source != nullptr ? floor_dist : 0.0;
-    return std::max(std::sqrt(limit_sq), floor) * scale_ + scratch.slack[k];
+    return std::max(limit, floor) * scale_ + scratch.slack[k];
   };
   // The centre's distance may be 0 by the identical-triangle rule while it lies up to that
   // check's reach from B (FaceEvaluator::evaluate): its geometric distance is at most d_c plus
   // that reach, and only geometric distances obey the triangle inequality.
   const double center_geometric = d_c + (hint_of(c).source != nullptr ? floor_dist : 0.0);
   auto initial_limit = [&](std::size_t k) {
-    const double upper = (center_geometric + separation[k]) * (1.0 + 1e-9);
-    return eval_.limit_sq(upper * upper);
+    return eval_.limit((center_geometric + separation[k]) * (1.0 + 1e-9));
   };
   double initial_reach[kPacketSize];
   double packet_reach = 0.0;
@@ -916,8 +917,8 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     std::vector<SurfaceHit>& ties = scratch.ties;
     ties.clear();
     SurfaceHit first = eval_.evaluate(p, scratch.faces[first_idx], hint);
-    double best_sq = first.sq_distance;
-    double limit = eval_.limit_sq(best_sq);
+    double best_sq = first.sq_distance, best = std::sqrt(best_sq);
+    double limit = eval_.limit(best), limit_sq = limit * limit;  // = eval_.limit_sq(best_sq)
     ties.push_back(first);
     float cutoff = cutoff_of(std::min(initial_reach[k], reach(k, limit)));
     std::size_t left = kernels_->survivors(scratch.bound.data(), candidates, cutoff, first_idx,
@@ -930,16 +931,18 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       if (scratch.bound[idx] > cutoff) break;
       scratch.survivors[pick] = scratch.survivors[--left];
       const SurfaceHit h = eval_.evaluate(p, scratch.faces[idx], hint);
-      if (h.sq_distance > limit) continue;
+      if (h.sq_distance > limit_sq) continue;
       if (h.sq_distance < best_sq) {
         best_sq = h.sq_distance;
-        limit = eval_.limit_sq(best_sq);
+        best = std::sqrt(best_sq);
+        limit = eval_.limit(best);
+        limit_sq = limit * limit;
         cutoff = std::min(cutoff, cutoff_of(reach(k, limit)));
       }
       ties.push_back(h);
     }
-    detail::keep_ties(ties, limit);
-    out.distance[base + k] = std::sqrt(best_sq);
+    detail::keep_ties(ties, limit_sq);
+    out.distance[base + k] = best;
     out.hits.insert(out.hits.end(), ties.begin(), ties.end());
     out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
   }
