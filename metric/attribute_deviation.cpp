@@ -86,25 +86,6 @@ struct TieRange {
 
 constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutive = coherent)
 
-// The bounding box of the sample points (min and max are exact in any order, so the threads'
-// boxes merge in any order).
-BoundingBox sample_bounds(const SampleSet& samples, int threads) {
-  BoundingBox box;
-  const auto n = static_cast<std::int64_t>(samples.samples.size());
-#pragma omp parallel num_threads(threads)
-  {
-    BoundingBox local;
-#pragma omp for schedule(static) nowait
-    for (std::int64_t i = 0; i < n; ++i) local.extend(samples.samples[i].point);
-#pragma omp critical(meshdev_sample_bounds)
-    if (!local.empty()) {
-      box.extend(local.min);
-      box.extend(local.max);
-    }
-  }
-  return box;
-}
-
 }  // namespace
 
 QueryHint sample_hint(const TriMesh& reference, const Sample& s, Vec3 corners[3]) {
@@ -152,8 +133,10 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   }
   if (!texture.empty()) assert(reference.texture && target.texture && uv_ref && uv_tgt);
   std::vector<double> uv_gap(cohen.empty() ? 0 : n, 0.0);
-  // The grid of the Morton order each chunk is queried in.
-  const BoundingBox sample_box = sample_bounds(samples, threads);
+  // The grid of the Morton order each chunk is queried in: the reference's box, which holds its
+  // samples (up to rounding; morton_order clamps), and costs O(V + F) instead of a pass over
+  // the samples.
+  const BoundingBox sample_box = bounding_box(ref);
 
 #pragma omp parallel num_threads(threads)
   {
@@ -170,7 +153,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t chunk = 0; chunk < chunks; ++chunk) {
       // The chunk's nearest points in one batch, in Morton order of the samples' positions
-      // (on a grid over all samples, so an already sorted set is left as it is): consecutive
+      // (on a grid over A's box, so a set sorted on that grid is left as it is): consecutive
       // queries are then near each other (packets, tight hints) even where samples come in
       // random order inside large faces. Results go to each sample's own index, so the order
       // changes only the speed.

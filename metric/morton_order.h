@@ -7,10 +7,10 @@
 // up to their face's size, and Monte Carlo samples inside a face come in random order.
 //
 // Codes: 21 bits per axis on a cubic grid over a box the caller gives (for compute_deviations,
-// the whole sample set's box, so a run cut from a set already sorted along that curve is
-// recognised as sorted), interleaved x-y-z (x in the lowest bit). A run is sorted by the 30
-// highest bits in which its codes differ (finer bits keep the input order). Deterministic.
-// Ref: Morton, "A computer oriented geodetic data base..." (IBM, 1966).
+// the reference mesh's box, which holds all its samples, so a run cut from a set already sorted
+// along that curve is recognised as sorted), interleaved x-y-z (x in the lowest bit). A run is
+// sorted by the 30 highest bits in which its codes differ (finer bits keep the input order).
+// Deterministic. Ref: Morton, "A computer oriented geodetic data base..." (IBM, 1966).
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -131,17 +131,20 @@ std::uint64_t spread21(std::uint64_t x) {
   return x;
 }
 
-void morton_sort(meshdev::SampleSet& set) {
-  meshdev::BoundingBox box;
-  for (const auto& s : set.samples) box.extend(s.point);
+// Sorts the samples along the Morton curve of a 2^21 grid over `box` (A's bounding box: the grid
+// compute_deviations orders its chunks on, so it finds them already sorted and leaves them).
+void morton_sort(meshdev::SampleSet& set, const meshdev::BoundingBox& box) {
   const Vec3 ext = box.max - box.min;
   const double scale = 2097151.0 / std::max({ext.x, ext.y, ext.z, 1e-300});
+  auto cell = [&](double x, double x0) -> std::uint64_t {  // clamped to the grid, as there
+    const double t = (x - x0) * scale;
+    return t >= 0.0 ? (t < 2097151.0 ? static_cast<std::uint64_t>(t) : 2097151u) : 0u;
+  };
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(set.samples.size());
   for (std::size_t i = 0; i < set.samples.size(); ++i) {
-    const Vec3 q = (set.samples[i].point - box.min) * scale;
-    keys[i] = {spread21(static_cast<std::uint64_t>(q.x)) |
-                   spread21(static_cast<std::uint64_t>(q.y)) << 1 |
-                   spread21(static_cast<std::uint64_t>(q.z)) << 2,
+    const Vec3& p = set.samples[i].point;
+    keys[i] = {spread21(cell(p.x, box.min.x)) | spread21(cell(p.y, box.min.y)) << 1 |
+                   spread21(cell(p.z, box.min.z)) << 2,
                static_cast<std::uint32_t>(i)};
   }
   std::sort(keys.begin(), keys.end());
@@ -233,7 +236,7 @@ struct PeerOut {
 // ---------------------------------------------------------------------------------------------
 // Embree 3.
 
-struct EmbreeArrays {  // our own arrays, shared with Embree (no copy inside Embree)
+struct EmbreeArrays {               // our own arrays, shared with Embree (no copy inside Embree)
   std::vector<float> vertices;      // 3 per vertex + 1 float of padding (Embree reads 16 bytes)
   std::vector<std::uint32_t> tris;  // 3 per face
 };
@@ -328,7 +331,8 @@ void embree_queries(RTCScene scene, const T* vertices, const std::uint32_t* tris
       query.x = points[3 * i], query.y = points[3 * i + 1], query.z = points[3 * i + 2];
       query.time = 0;
       query.radius = std::numeric_limits<float>::infinity();
-      EmbreeQuery<T> q{vertices, tris,
+      EmbreeQuery<T> q{vertices,
+                       tris,
                        {static_cast<T>(points_d[3 * i]), static_cast<T>(points_d[3 * i + 1]),
                         static_cast<T>(points_d[3 * i + 2])}};
       if (hint && previous != std::numeric_limits<std::uint32_t>::max()) {
@@ -343,9 +347,9 @@ void embree_queries(RTCScene scene, const T* vertices, const std::uint32_t* tris
       out.distance[i] = static_cast<float>(std::sqrt(q.best));
       out.face[i] = q.face;
       for (int k = 0; k < 3; ++k)
-        out.attribute[3 * i + k] = static_cast<float>(q.bary[0] * attr[3 * t[0] + k] +
-                                                      q.bary[1] * attr[3 * t[1] + k] +
-                                                      q.bary[2] * attr[3 * t[2] + k]);
+        out.attribute[3 * i + k] =
+            static_cast<float>(q.bary[0] * attr[3 * t[0] + k] + q.bary[1] * attr[3 * t[1] + k] +
+                               q.bary[2] * attr[3 * t[2] + k]);
     }
   }
 }
@@ -518,19 +522,21 @@ int main(int argc, char** argv) {
   meshdev::SampleSet set = meshdev::sample_surface(a, so, box_a.diagonal());
   const double t_sample = seconds_since(t0);
   t0 = Clock::now();
-  if (opt.morton) morton_sort(set);
+  if (opt.morton) morton_sort(set, box_a);
   const double t_sort = seconds_since(t0);
   const std::size_t n = set.samples.size();
 
   std::printf("peer_compare: A = %s (%zu faces), B = %s (%zu faces)\n", opt.a.c_str(),
               a.num_faces(), opt.b.c_str(), b.num_faces());
-  std::printf("  %zu samples on A (Monte Carlo, seed %llu, %s order; sampling %.3f s, sort %.3f "
-              "s), temperature channel: %s\n",
-              n, static_cast<unsigned long long>(opt.seed), opt.morton ? "Morton" : "native",
-              t_sample, t_sort, temperature.c_str());
-  std::printf("  load average at start: %s (2-core machine: > 0.5 means the numbers are "
-              "loaded)\n",
-              load_start.c_str());
+  std::printf(
+      "  %zu samples on A (Monte Carlo, seed %llu, %s order; sampling %.3f s, sort %.3f "
+      "s), temperature channel: %s\n",
+      n, static_cast<unsigned long long>(opt.seed), opt.morton ? "Morton" : "native", t_sample,
+      t_sort, temperature.c_str());
+  std::printf(
+      "  load average at start: %s (2-core machine: > 0.5 means the numbers are "
+      "loaded)\n",
+      load_start.c_str());
   std::fflush(stdout);
 
   std::vector<Row> rows;
@@ -564,9 +570,8 @@ int main(int argc, char** argv) {
     const double build = seconds_since(t0);
     const double struct_mib = probe.mib();
     const auto* bvh = dynamic_cast<const meshdev::TriangleBvh*>(index.get());
-    const double bpf = bvh ? static_cast<double>(bvh->memory_bytes()) /
-                                 static_cast<double>(b.num_faces())
-                           : 0;
+    const double bpf =
+        bvh ? static_cast<double>(bvh->memory_bytes()) / static_cast<double>(b.num_faces()) : 0;
     for (int th : opt.threads) {
       meshdev::SampleDeviations dev;
       const Timing t = time_best(opt.repeats, th, [&] {
@@ -606,7 +611,8 @@ int main(int argc, char** argv) {
     EmbreeArrays arrays;
     arrays.vertices.resize(3 * b.num_vertices() + 1, 0.f);
     for (std::size_t v = 0; v < b.num_vertices(); ++v)
-      for (int k = 0; k < 3; ++k) arrays.vertices[3 * v + k] = static_cast<float>(b.positions[v][k]);
+      for (int k = 0; k < 3; ++k)
+        arrays.vertices[3 * v + k] = static_cast<float>(b.positions[v][k]);
     arrays.tris.resize(3 * b.num_faces());
     for (std::size_t f = 0; f < b.num_faces(); ++f)
       for (int k = 0; k < 3; ++k) arrays.tris[3 * f + k] = b.faces[f][k];
@@ -635,8 +641,8 @@ int main(int argc, char** argv) {
             embree_queries(scene->scene, &b.positions[0].x, arrays.tris.data(), attr_f, pf, pd,
                            hint, th, out);
           else
-            embree_queries(scene->scene, arrays.vertices.data(), arrays.tris.data(), attr_f, pf,
-                           pd, hint, th, out);
+            embree_queries(scene->scene, arrays.vertices.data(), arrays.tris.data(), attr_f, pf, pd,
+                           hint, th, out);
         });
         Row r{hint ? "embree+hint" : "embree", th, build, t, static_cast<double>(n) / t.wall};
         std::tie(r.mean, r.max) = mean_max(out.distance);
@@ -673,8 +679,8 @@ int main(int argc, char** argv) {
     PeerOut out;
     out.resize(n);
     for (int th : opt.threads) {
-      const Timing t = time_best(opt.repeats, th,
-                                 [&] { cgal_queries(tree, tris, b, attr_d, pd, th, out); });
+      const Timing t =
+          time_best(opt.repeats, th, [&] { cgal_queries(tree, tris, b, attr_d, pd, th, out); });
       Row r{"cgal", th, t_tree + t_kd, t, static_cast<double>(n) / t.wall};
       std::tie(r.mean, r.max) = mean_max(out.distance);
       r.struct_mib = struct_mib;
@@ -696,7 +702,8 @@ int main(int argc, char** argv) {
     return m;
   };
   double mean_lo = std::numeric_limits<double>::infinity(), mean_hi = -mean_lo;
-  for (const Row& r : rows) mean_lo = std::min(mean_lo, r.mean), mean_hi = std::max(mean_hi, r.mean);
+  for (const Row& r : rows)
+    mean_lo = std::min(mean_lo, r.mean), mean_hi = std::max(mean_hi, r.mean);
   const double mean_diff = rows.empty() ? 0 : mean_hi - mean_lo;
   const double diag_b = meshdev::bounding_box(b).diagonal();
 
@@ -727,30 +734,35 @@ int main(int argc, char** argv) {
                 meshdev_per_cpu(r.threads) / per_cpu(r), r.mean, r.bytes_per_face, r.struct_mib,
                 r.note.c_str());
   }
-  std::printf("(M q/s: wall-clock throughput; cpu: CPU share = CPU s / (wall x threads); M q/CPUs: "
-              "samples per CPU-second; meshdev/x: meshdev's throughput over this row's, wall and "
-              "per CPU-second; B/face: structure bytes per face of B, meshdev exact "
-              "(TriangleBvh::memory_bytes), peers from the heap or RSS growth of their build)\n");
+  std::printf(
+      "(M q/s: wall-clock throughput; cpu: CPU share = CPU s / (wall x threads); M q/CPUs: "
+      "samples per CPU-second; meshdev/x: meshdev's throughput over this row's, wall and "
+      "per CPU-second; B/face: structure bytes per face of B, meshdev exact "
+      "(TriangleBvh::memory_bytes), peers from the heap or RSS growth of their build)\n");
   auto speedup = [&](const std::string& e) {
     double q1 = 0, q2 = 0;
     for (const Row& r : rows)
-      if (r.engine == e && r.threads == 1) q1 = r.qps;
-      else if (r.engine == e && r.threads == 2) q2 = r.qps;
+      if (r.engine == e && r.threads == 1)
+        q1 = r.qps;
+      else if (r.engine == e && r.threads == 2)
+        q2 = r.qps;
     return q1 > 0 && q2 > 0 ? q2 / q1 : std::numeric_limits<double>::quiet_NaN();
   };
-  std::printf("\n2-thread speed-up: meshdev %.2fx, embree %.2fx, cgal %.2fx\n",
-              speedup("meshdev"), speedup("embree"), speedup("cgal"));
-  std::printf("agreement: mean distance spread %.3g (%.3g of B's diagonal); max per-sample |d|"
-              " difference meshdev-embree %.3g, meshdev-cgal %.3g, embree-cgal %.3g\n",
-              mean_diff, diag_b > 0 ? mean_diff / diag_b : 0.0, max_abs(d_meshdev, d_embree),
-              max_abs(d_meshdev, d_cgal), max_abs(d_embree, d_cgal));
+  std::printf("\n2-thread speed-up: meshdev %.2fx, embree %.2fx, cgal %.2fx\n", speedup("meshdev"),
+              speedup("embree"), speedup("cgal"));
+  std::printf(
+      "agreement: mean distance spread %.3g (%.3g of B's diagonal); max per-sample |d|"
+      " difference meshdev-embree %.3g, meshdev-cgal %.3g, embree-cgal %.3g\n",
+      mean_diff, diag_b > 0 ? mean_diff / diag_b : 0.0, max_abs(d_meshdev, d_embree),
+      max_abs(d_meshdev, d_cgal), max_abs(d_embree, d_cgal));
   if (!d_meshdev.empty()) std::printf("meshdev: %.3f equidistant faces per sample\n", meshdev_ties);
   std::printf("peak RSS of the process %.1f MiB; load average at end: %s\n", peak,
               load_end.c_str());
 
   // CSV.
   std::ostringstream csv;
-  const std::string label = opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
+  const std::string label =
+      opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
   for (const Row& r : rows) {
     char line[1024];
     std::snprintf(line, sizeof line,
