@@ -38,7 +38,8 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   r.samples = samples.samples.size();
 
   t0 = Clock::now();
-  std::unique_ptr<NearestPointIndex> index = make_nearest_point_index(*to.mesh, o.index, o.ties, o.threads);
+  std::unique_ptr<NearestPointIndex> index =
+      make_nearest_point_index(*to.mesh, o.index, o.ties, o.threads);
   r.seconds_index = seconds_since(t0);
   r.index = index->name();
 
@@ -124,6 +125,7 @@ ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const Compar
   r.normal_source = plan.normal_source;
 
   SamplingOptions sampling = options.sampling;
+  sampling.threads = options.threads;
   if (sampling.target_count == 0)
     sampling.target_count = 10 * std::max(a.num_faces(), b.num_faces());
   if (options.direction != Direction::kBackward)

@@ -1,6 +1,10 @@
 #include "metric/sampling.h"
 
+#include <omp.h>
+
 #include <algorithm>
+#include <array>
+#include <cassert>
 #include <cmath>
 #include <sstream>
 
@@ -46,17 +50,21 @@ void for_each_scan_point(const Vec3& a, const Vec3& b, const Vec3& c, double ste
   }
 }
 
-std::size_t scan_total(const TriMesh& m, double step) {
+// Scan-conversion points of all faces with step Δ (faces in parallel; an integer sum, so the same
+// for any thread count). O(F · rows per face).
+std::size_t scan_total(const TriMesh& m, double step, int threads) {
   std::size_t total = 0;
-  for (const Triangle& t : m.faces) {
+  const auto faces = static_cast<std::int64_t>(m.faces.size());
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : total)
+  for (std::int64_t f = 0; f < faces; ++f) {
+    const Triangle& t = m.faces[f];
     total += scan_conversion_count(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], step);
-    if (total > kMaxSamples) return total;
   }
   return total;
 }
 
 // Δ whose scan-conversion count is closest to `target` (bisection; the count falls as Δ grows).
-double solve_step(const TriMesh& m, std::size_t target) {
+double solve_step(const TriMesh& m, std::size_t target, int threads) {
   double sum = 0.0;
   for (const Triangle& t : m.faces)
     sum += 0.5 * norm(m.positions[t[1]] - m.positions[t[0]]) *
@@ -64,13 +72,13 @@ double solve_step(const TriMesh& m, std::size_t target) {
   if (!(sum > 0.0)) return 1.0;  // every face degenerate: each gets its corner only
   double guess = std::sqrt(sum / static_cast<double>(target));
   double lo = guess / 4, hi = guess * 4;
-  while (scan_total(m, lo) < target && lo > guess * 1e-6) lo /= 4;
-  while (scan_total(m, hi) > target && hi < guess * 1e6) hi *= 4;
+  while (scan_total(m, lo, threads) < target && lo > guess * 1e-6) lo /= 4;
+  while (scan_total(m, hi, threads) > target && hi < guess * 1e6) hi *= 4;
   double best = guess;
   double best_err = 1e300;
   for (int it = 0; it < 60; ++it) {
     const double mid = std::sqrt(lo * hi);
-    const std::size_t n = scan_total(m, mid);
+    const std::size_t n = scan_total(m, mid, threads);
     const double err = std::fabs(static_cast<double>(n) - static_cast<double>(target));
     if (err < best_err) {
       best_err = err;
@@ -158,49 +166,77 @@ void add_edge_samples(const TriMesh& m, double step, SampleSet& set) {
   }
 }
 
-void add_scan_samples(const TriMesh& m, double step, SampleSet& set) {
-  for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
-    const Triangle& tri = m.faces[f];
-    const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
-    const std::size_t first = set.samples.size();
-    for_each_scan_point(a, b, c, step, [&](double s, double t) {
-      Sample smp;
-      smp.point = a + s * (b - a) + t * (c - a);
-      smp.face = f;
-      smp.bary = {1.0 - s - t, s, t};
-      smp.kind = SampleKind::kFace;
-      set.samples.push_back(smp);
-    });
-    const std::size_t n = set.samples.size() - first;
-    const double w = face_area(m, f) / static_cast<double>(n);
-    for (std::size_t i = first; i < set.samples.size(); ++i) set.samples[i].weight = w;
-    set.face_count += n;
-  }
+// Face samples, faces in parallel: count(f) samples per face, then fill(f, out, n) writes face
+// f's n samples to its own slots, so the set is the same as a serial pass for any thread count.
+template <class Count, class Fill>
+void add_face_samples(const TriMesh& m, int threads, SampleSet& set, Count&& count, Fill&& fill) {
+  const auto faces = static_cast<std::int64_t>(m.faces.size());
+  std::vector<std::size_t> first(m.faces.size() + 1);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t f = 0; f < faces; ++f) first[f + 1] = count(static_cast<std::uint32_t>(f));
+  first[0] = set.samples.size();
+  for (std::size_t f = 0; f < m.faces.size(); ++f) first[f + 1] += first[f];
+  set.samples.resize(first.back());
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 256)
+  for (std::int64_t f = 0; f < faces; ++f)
+    fill(static_cast<std::uint32_t>(f), set.samples.data() + first[f], first[f + 1] - first[f]);
+  set.face_count += first.back() - first[0];
 }
 
-void add_monte_carlo_samples(const TriMesh& m, std::size_t target, std::uint64_t seed,
+void add_scan_samples(const TriMesh& m, double step, int threads, SampleSet& set) {
+  auto corners = [&](std::uint32_t f) {
+    const Triangle& t = m.faces[f];
+    return std::array<const Vec3*, 3>{&m.positions[t[0]], &m.positions[t[1]], &m.positions[t[2]]};
+  };
+  add_face_samples(
+      m, threads, set,
+      [&](std::uint32_t f) {
+        const auto v = corners(f);
+        return scan_conversion_count(*v[0], *v[1], *v[2], step);
+      },
+      [&](std::uint32_t f, Sample* out, std::size_t n) {
+        const auto v = corners(f);
+        const Vec3 &a = *v[0], &b = *v[1], &c = *v[2];
+        const double w = face_area(m, f) / static_cast<double>(n);
+        std::size_t k = 0;
+        for_each_scan_point(a, b, c, step, [&](double s, double t) {
+          assert(k < n);
+          Sample& smp = out[k++];
+          smp.point = a + s * (b - a) + t * (c - a);
+          smp.face = f;
+          smp.bary = {1.0 - s - t, s, t};
+          smp.weight = w;
+          smp.kind = SampleKind::kFace;
+        });
+        assert(k == n);
+      });
+}
+
+void add_monte_carlo_samples(const TriMesh& m, std::size_t target, std::uint64_t seed, int threads,
                              SampleSet& set) {
   const double total = surface_area(m);
   if (!(total > 0.0)) return;
   const double weight = total / static_cast<double>(target);
-  for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
-    const double expected = static_cast<double>(target) * face_area(m, f) / total;
-    const auto n = static_cast<std::size_t>(std::floor(expected + unit_random(seed, f, ~0ull)));
-    const Triangle& tri = m.faces[f];
-    const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
-    for (std::size_t k = 0; k < n; ++k) {
-      const double r = std::sqrt(unit_random(seed, f, 2 * k));
-      const double r2 = unit_random(seed, f, 2 * k + 1);
-      Sample s;
-      s.bary = {1.0 - r, r * (1.0 - r2), r * r2};
-      s.point = s.bary[0] * a + s.bary[1] * b + s.bary[2] * c;
-      s.face = f;
-      s.weight = weight;
-      s.kind = SampleKind::kFace;
-      set.samples.push_back(s);
-    }
-    set.face_count += n;
-  }
+  add_face_samples(
+      m, threads, set,
+      [&](std::uint32_t f) {
+        const double expected = static_cast<double>(target) * face_area(m, f) / total;
+        return static_cast<std::size_t>(std::floor(expected + unit_random(seed, f, ~0ull)));
+      },
+      [&](std::uint32_t f, Sample* out, std::size_t n) {
+        const Triangle& tri = m.faces[f];
+        const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
+        for (std::size_t k = 0; k < n; ++k) {
+          const double r = std::sqrt(unit_random(seed, f, 2 * k));
+          const double r2 = unit_random(seed, f, 2 * k + 1);
+          Sample& s = out[k];
+          s.bary = {1.0 - r, r * (1.0 - r2), r * r2};
+          s.point = s.bary[0] * a + s.bary[1] * b + s.bary[2] * c;
+          s.face = f;
+          s.weight = weight;
+          s.kind = SampleKind::kFace;
+        }
+      });
 }
 
 }  // namespace
@@ -243,6 +279,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
     throw InvalidInput("the sampling step must be a positive finite number");
 
   SampleSet set;
+  const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   const std::size_t target = o.target_count > 0 ? o.target_count : 10 * mesh.faces.size();
   double step = o.step > 0.0 ? o.step : o.step_fraction * diagonal;
   const bool needs_step = o.faces == FaceSampling::kScanConversion || o.edges;
@@ -250,7 +287,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
     if (o.step > 0.0 || o.step_fraction > 0.0)
       throw InvalidInput("the sampling step is 0 (is the mesh's bounding box a single point?)");
     if (o.faces == FaceSampling::kScanConversion || o.faces == FaceSampling::kMonteCarlo) {
-      step = solve_step(mesh, target);
+      step = solve_step(mesh, target, threads);
     } else {  // edges alone: spread the target count over the total edge length
       double length = 0.0;
       for (const Triangle& t : mesh.faces)
@@ -260,7 +297,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
     }
   }
   const std::size_t scan_count =
-      o.faces == FaceSampling::kScanConversion ? scan_total(mesh, step) : 0;
+      o.faces == FaceSampling::kScanConversion ? scan_total(mesh, step, threads) : 0;
   if (scan_count > kMaxSamples)
     throw InvalidInput("the sampling step " + std::to_string(step) +
                        " would create more than 2^31 samples; use a larger step");
@@ -274,8 +311,9 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
 
   if (o.vertices) add_vertex_samples(mesh, set);
   if (o.edges) add_edge_samples(mesh, step, set);
-  if (o.faces == FaceSampling::kScanConversion) add_scan_samples(mesh, step, set);
-  if (o.faces == FaceSampling::kMonteCarlo) add_monte_carlo_samples(mesh, target, o.seed, set);
+  if (o.faces == FaceSampling::kScanConversion) add_scan_samples(mesh, step, threads, set);
+  if (o.faces == FaceSampling::kMonteCarlo)
+    add_monte_carlo_samples(mesh, target, o.seed, threads, set);
 
   // Weights: face samples carry area; with face samples present, vertex and edge samples only
   // hunt the maximum (weight 0); edge samples carry length when they are the finest kind.

@@ -42,6 +42,8 @@ struct SamplingOptions {
   double step_fraction = 0;      // Δ as a fraction of `diagonal` (e.g. 0.005 = 0.5 %)
   std::size_t target_count = 0;  // face samples wanted; 0 = 10 x faces (Metro's default)
   std::uint64_t seed = 1;        // Monte Carlo only
+  int threads = 0;               // OpenMP threads for face samples (0 = OpenMP's default);
+                                 // the set is the same for any count
 };
 
 struct Sample {

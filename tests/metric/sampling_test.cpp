@@ -74,6 +74,41 @@ TEST(Sampling, MonteCarloDependsOnlyOnTheSeed) {
   EXPECT_NE(z.samples[0].point, x.samples[0].point);
 }
 
+// Faces are sampled in parallel, each into its own slots: the set is the one a serial pass makes
+// (face by face, in face order) for any thread count.
+TEST(Sampling, FaceSamplesAreTheSameForAnyThreadCount) {
+  const TriMesh m = test::random_soup(300, 11, 0.1);
+  for (FaceSampling kind : {FaceSampling::kScanConversion, FaceSampling::kMonteCarlo}) {
+    SamplingOptions o;
+    o.faces = kind;
+    o.target_count = 30000;
+    o.threads = 1;
+    const SampleSet one = sample_surface(m, o, 1.0);
+    std::size_t scan_total = 0;
+    for (const Triangle& t : m.faces)
+      scan_total +=
+          scan_conversion_count(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], one.step);
+    if (kind == FaceSampling::kScanConversion) {
+      EXPECT_EQ(one.face_count, scan_total);
+    }
+    for (std::size_t i = one.vertex_count + 1; i < one.samples.size(); ++i)
+      ASSERT_LE(one.samples[i - 1].face, one.samples[i].face);  // face order
+    for (int threads : {2, 3, 7}) {
+      o.threads = threads;
+      const SampleSet other = sample_surface(m, o, 1.0);
+      ASSERT_EQ(other.samples.size(), one.samples.size());
+      for (std::size_t i = 0; i < one.samples.size(); ++i) {
+        const Sample &x = one.samples[i], &y = other.samples[i];
+        ASSERT_EQ(x.point, y.point) << "sample " << i << ", " << threads << " threads";
+        ASSERT_EQ(x.face, y.face);
+        ASSERT_EQ(x.bary, y.bary);
+        ASSERT_EQ(x.weight, y.weight);
+        ASSERT_EQ(x.kind, y.kind);
+      }
+    }
+  }
+}
+
 TEST(Sampling, EdgeSamplesCoverEveryEdgeOnce) {
   TriMesh m = test::tetrahedron();
   SamplingOptions o;
