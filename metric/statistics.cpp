@@ -9,15 +9,16 @@
 namespace meshdev {
 namespace {
 
-// Neumaier's compensated summation: the sum of many small terms stays exact to ~1 ulp.
+// Neumaier's compensated summation: the sum of many small terms stays exact to ~1 ulp. Each
+// step's rounding error comes from Knuth's branch-free TwoSum, which is exact for any order of
+// magnitudes, so it equals the error of Neumaier's magnitude test (Fast2Sum on the larger
+// operand) bit for bit, without the test's unpredictable branch.
 class CompensatedSum {
  public:
   void add(double x) {
     const double t = sum_ + x;
-    if (std::fabs(sum_) >= std::fabs(x))
-      comp_ += (sum_ - t) + x;
-    else
-      comp_ += (x - t) + sum_;
+    const double z = t - sum_;
+    comp_ += (sum_ - (t - z)) + (x - z);
     sum_ = t;
   }
   double value() const { return sum_ + comp_; }
