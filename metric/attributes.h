@@ -117,8 +117,8 @@ double attribute_distance(MeasureKind kind, const double* x, const double* y, in
 // is computed once per point (metric/attribute_deviation.cpp).
 enum class ValueForm : std::uint8_t { kRaw, kUnit, kLab };
 ValueForm value_form(MeasureKind kind);
-// Writes `x` (dim components) in `form` to `out`: a copy, the unit vector (0 for a zero normal)
-// or sRGB -> CIELAB; out has room for dim values. O(dim).
+// Writes `x` (dim components) in `form` to `out`: a copy (dim values), the unit vector (0 for a
+// zero normal) or sRGB -> CIELAB (3 values; x has 3 components). O(dim).
 void to_form(ValueForm form, const double* x, int dim, double* out);
 // attribute_distance of two values already in value_form(kind) (from to_form). O(dim).
 double form_distance(MeasureKind kind, const double* x, const double* y, int dim);

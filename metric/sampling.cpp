@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <sstream>
@@ -50,17 +51,21 @@ void for_each_scan_point(const Vec3& a, const Vec3& b, const Vec3& c, double ste
   }
 }
 
-// Scan-conversion points of all faces with step Δ (faces in parallel; an integer sum, so the same
-// for any thread count). O(F · rows per face).
+// Scan-conversion points of all faces with step Δ, or kMaxSamples + 1 once a thread's share
+// passes kMaxSamples (the rest is skipped, so a step far too small is refused quickly). Faces in
+// parallel; an integer sum, so the result does not depend on the thread count. O(F · rows).
 std::size_t scan_total(const TriMesh& m, double step, int threads) {
+  std::atomic<bool> over{false};
   std::size_t total = 0;
   const auto faces = static_cast<std::int64_t>(m.faces.size());
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : total)
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : total)
   for (std::int64_t f = 0; f < faces; ++f) {
+    if (over.load(std::memory_order_relaxed)) continue;
     const Triangle& t = m.faces[f];
     total += scan_conversion_count(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], step);
+    if (total > kMaxSamples) over.store(true, std::memory_order_relaxed);  // this thread's share
   }
-  return total;
+  return over.load() ? kMaxSamples + 1 : total;
 }
 
 // Δ whose scan-conversion count is closest to `target` (bisection; the count falls as Δ grows).

@@ -659,7 +659,6 @@ struct TriangleBvh::PacketScratch {
   // rounded to float. Faces the bound must not cull have all zeros (bound 0); padding lanes
   // have d = -inf (bound +inf).
   std::vector<float> rows;
-  std::size_t stride = 0;
   std::vector<float> bound;
   std::vector<std::uint32_t> survivors;
   std::vector<SurfaceHit> ties, center_ties;
@@ -868,7 +867,6 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // The candidates' planes, from the cache (consecutive packets share most of their faces).
   const std::size_t candidates = scratch.faces.size();
   const std::size_t stride = (candidates + kPlaneLanes - 1) / kPlaneLanes * kPlaneLanes;
-  scratch.stride = stride;
   scratch.rows.resize(kPlaneRows * stride);
   float* rows = scratch.rows.data();
   float max_offset = 0.0f;

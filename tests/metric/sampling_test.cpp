@@ -109,6 +109,20 @@ TEST(Sampling, FaceSamplesAreTheSameForAnyThreadCount) {
   }
 }
 
+// A step that would make more than 2^31 samples is refused once the count passes the limit, not
+// after counting every face (here ~2.5e7 scan rows per face: counting all 3,200 faces would take
+// minutes, so a regression shows as a test timeout).
+TEST(Sampling, AStepFarTooSmallIsRefusedAsSoonAsTheCountPassesTheLimit) {
+  const TriMesh m = test::grid(40);
+  SamplingOptions o;
+  o.faces = FaceSampling::kScanConversion;
+  o.step = 1e-9;
+  for (int threads : {1, 2}) {
+    o.threads = threads;
+    EXPECT_THROW(sample_surface(m, o, 1.0), InvalidInput);
+  }
+}
+
 TEST(Sampling, EdgeSamplesCoverEveryEdgeOnce) {
   TriMesh m = test::tetrahedron();
   SamplingOptions o;
