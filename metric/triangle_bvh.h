@@ -29,8 +29,9 @@
 //        other query an upper bound (triangle inequality); one traversal with the packet's box
 //        collects the faces within reach of any of them; each query then tests only those, with
 //        a float lower bound from precomputed unit plane and edge normals (one multiply-add per
-//        coordinate), and evaluates the survivors exactly, nearest bound first. Same answers as
-//        find(); packets whose reach holds too many faces fall back to find().
+//        coordinate; SIMD kernels chosen at run time, metric/plane_bounds.h), and evaluates the
+//        survivors exactly, nearest bound first. Same answers as find(); packets whose reach
+//        holds too many faces fall back to find().
 // Ref: Wald, "On fast construction of SAH-based bounding volume hierarchies" (2007) for binning;
 //      Wald et al., "Getting rid of packets" (2008) and Embree for 4-wide nodes.
 #include <cstdint>
