@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "metric/color_space.h"
 #include "metric/errors.h"
 #include "metric/nearest_point.h"
@@ -34,6 +37,41 @@ TEST(Attributes, NormalMeasuresUseUnitVectors) {
   EXPECT_NEAR(attribute_distance(MeasureKind::kNormalEuclidean, x, y, 3), std::sqrt(2.0), 1e-15);
   const double z[3] = {-1, 0, 0};
   EXPECT_NEAR(attribute_distance(MeasureKind::kNormalAngle, x, z, 3), 180.0, 1e-12);
+}
+
+// The chord formula against rotations by known angles, tiny to 180 degrees, about random axes
+// (built in long double, so the pairs carry the angle to far below the tolerance).
+TEST(Attributes, NormalAngleIsTheRotationAngleFromTinyTo180Degrees) {
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> gauss;
+  const double angles[] = {0.0, 1e-9,   1e-6, 1e-3, 0.5, 1,       30,         60, 89.999,
+                           90,  90.001, 120,  150,  179, 179.999, 179.999999, 180};
+  for (int trial = 0; trial < 20; ++trial) {
+    const long double n[3] = {gauss(rng), gauss(rng), gauss(rng)};
+    long double a[3] = {gauss(rng), gauss(rng), gauss(rng)};
+    const long double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const long double u[3] = {n[0] / nn, n[1] / nn, n[2] / nn};
+    const long double ua = a[0] * u[0] + a[1] * u[1] + a[2] * u[2];
+    for (int k = 0; k < 3; ++k) a[k] -= ua * u[k];  // a: perpendicular to u
+    const long double na = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (long double& c : a) c /= na;
+    for (double deg : angles) {
+      const long double t = deg * 3.141592653589793238462643383279503L / 180;
+      double x[3], y[3];
+      for (int k = 0; k < 3; ++k) {
+        x[k] = static_cast<double>(u[k]);
+        y[k] = static_cast<double>(std::cos(t) * u[k] + std::sin(t) * a[k]);
+      }
+      const double got = attribute_distance(MeasureKind::kNormalAngle, x, y, 3);
+      EXPECT_NEAR(got, deg, 1e-11) << "trial " << trial << ", " << deg << " degrees";
+      EXPECT_GE(got, 0.0);
+      EXPECT_LE(got, 180.0);
+      // Symmetric in its arguments up to rounding, and independent of the vectors' lengths.
+      EXPECT_NEAR(attribute_distance(MeasureKind::kNormalAngle, y, x, 3), got, 1e-11);
+      const double y3[3] = {3 * y[0], 3 * y[1], 3 * y[2]};
+      EXPECT_NEAR(attribute_distance(MeasureKind::kNormalAngle, x, y3, 3), got, 1e-11);
+    }
+  }
 }
 
 // Reference pair 1 of Sharma, Wu & Dalal (2005), Table 1: ΔE00 = 2.0425.
