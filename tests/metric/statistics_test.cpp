@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace meshdev {
@@ -92,6 +93,71 @@ TEST(Statistics, BinnedQuantilesEqualTheSortedTwin) {
           EXPECT_EQ(got[q], want) << "n " << n << " shape " << shape << " weighted " << weighted
                                   << " q " << qs[q];
         }
+      }
+    }
+  }
+}
+
+// The fused passes against a plain twin: one quantity per loop, in sample order, each sum
+// compensated the same way (so the moments agree bit for bit), histogram shares summed per bin.
+// Values repeat their extremes (the first index must win); weights absent, equal or spread.
+TEST(Statistics, FusedPassesEqualThePlainTwin) {
+  struct Sum {  // Neumaier
+    double s = 0, c = 0;
+    void add(double x) {
+      const double t = s + x;
+      c += std::fabs(s) >= std::fabs(x) ? (s - t) + x : (x - t) + s;
+      s = t;
+    }
+    double value() const { return s + c; }
+  };
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (std::size_t n : {1u, 2u, 17u, 1000u, 30000u}) {
+    std::vector<double> values(n), spread(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      values[i] = std::floor(u(rng) * 40.0) * 0.37 - 2.0;  // negatives, ties at both ends
+      spread[i] = u(rng) < 0.1 ? 0.0 : u(rng);
+    }
+    for (int mode = 0; mode < 3; ++mode) {
+      const std::vector<double> weights =
+          mode == 0 ? std::vector<double>{} : (mode == 1 ? std::vector<double>(n, 0.3) : spread);
+      const Statistics s = compute_statistics(values, weights, 7);
+      Sum given;  // all-zero weights count as equal ones
+      for (double x : weights) given.add(x);
+      const bool equal = weights.empty() || !(given.value() > 0.0);
+      auto w = [&](std::size_t i) { return equal ? 1.0 : weights[i]; };
+      Sum total, sum, sum_sq, var;
+      for (std::size_t i = 0; i < n; ++i) total.add(w(i));
+      for (std::size_t i = 0; i < n; ++i) sum.add(w(i) * values[i]);
+      for (std::size_t i = 0; i < n; ++i) sum_sq.add(w(i) * values[i] * values[i]);
+      const double mean = sum.value() / total.value();
+      for (std::size_t i = 0; i < n; ++i) var.add(w(i) * (values[i] - mean) * (values[i] - mean));
+      const auto lo = std::min_element(values.begin(), values.end());
+      const auto hi = std::max_element(values.begin(), values.end());  // the first maximum
+      const std::string where = "n " + std::to_string(n) + " mode " + std::to_string(mode);
+      EXPECT_EQ(s.min, *lo) << where;
+      EXPECT_EQ(s.max, *hi) << where;
+      EXPECT_EQ(s.argmin, static_cast<std::size_t>(lo - values.begin())) << where;
+      EXPECT_EQ(s.argmax, static_cast<std::size_t>(hi - values.begin())) << where;
+      EXPECT_EQ(s.weight_sum, total.value()) << where;
+      EXPECT_EQ(s.mean, mean) << where;
+      EXPECT_EQ(s.rms, std::sqrt(std::max(0.0, sum_sq.value() / total.value()))) << where;
+      EXPECT_EQ(s.variance, var.value() / total.value()) << where;
+      EXPECT_EQ(s.area_weighted, mode == 2 && n > 1 && !equal) << where;
+      const double h_lo = std::min(0.0, *lo), h_hi = *hi;
+      std::vector<std::size_t> counts(7, 0);
+      std::vector<Sum> share(7);
+      for (std::size_t i = 0; i < n; ++i) {
+        int b = h_hi > h_lo ? static_cast<int>((values[i] - h_lo) / (h_hi - h_lo) * 7) : 0;
+        b = std::clamp(b, 0, 6);
+        ++counts[b];
+        share[b].add(w(i));
+      }
+      for (int b = 0; b < 7; ++b) {
+        EXPECT_EQ(s.histogram.counts[b], counts[b]) << where << " bin " << b;
+        EXPECT_NEAR(s.histogram.weight_fraction[b], share[b].value() / total.value(), 1e-15)
+            << where << " bin " << b;
       }
     }
   }
