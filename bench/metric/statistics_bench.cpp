@@ -36,10 +36,7 @@ void BM_Statistics(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n));
   state.SetLabel(spread ? "spread weights" : "equal weights");
 }
-BENCHMARK(BM_Statistics)
-    ->Args({1 << 20, 0})
-    ->Args({1 << 20, 1})
-    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Statistics)->Args({1 << 20, 0})->Args({1 << 20, 1})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace meshdev
