@@ -104,10 +104,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   assert(!measures.empty() && measures[0].kind == MeasureKind::kGeometry);
   const std::size_t n = samples.samples.size();
   SampleDeviations out;
-  out.values.assign(measures.size(), std::vector<double>(n, 0.0));
-  if (options.keep_nearest) out.nearest.resize(n);
-  out.nearest_feature.resize(n);
-  out.tie_count.resize(n);
+  out.values.resize(measures.size());  // the per-sample arrays are made by the team, below
   const std::vector<ChannelGroup> groups = group_measures(reference, target, measures);
   const TriMesh& ref = *reference.mesh;
   const TriMesh& tgt = *target.mesh;
@@ -140,6 +137,22 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
 
 #pragma omp parallel num_threads(threads)
   {
+    // The per-sample output arrays, each value-initialised (and its pages first touched) by one
+    // thread of the team: one after the other they took 25 ms for 1M samples and four measures,
+    // a fifth of a 2-thread run. (The loop's barrier orders them before the chunks.)
+    const auto arrays = static_cast<std::int64_t>(measures.size() + 3);
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t a = 0; a < arrays; ++a) {
+      const auto m = static_cast<std::size_t>(a);
+      if (m < measures.size())
+        out.values[m].assign(n, 0.0);
+      else if (m == measures.size())
+        out.nearest_feature.resize(n);
+      else if (m == measures.size() + 1)
+        out.tie_count.resize(n);
+      else if (options.keep_nearest)
+        out.nearest.resize(n);
+    }
     BatchHits batch;
     std::vector<Vec3> points, corners;
     std::vector<QueryHint> hints;
