@@ -221,7 +221,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
           }
 
           if (cohen.empty() && texture.empty()) continue;
-          double uv[2];
+          double uv[3];  // [2] unused: a 2-slot buffer draws a false -Warray-bounds (interpolate)
           interpolate(*uv_ref, ref, s.face, s.bary, s.vertex, uv);
           if (!cohen.empty()) {  // p'' = the point of B with p's UV (Eq. 2)
             const CohenResult c =

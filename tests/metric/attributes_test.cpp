@@ -21,7 +21,7 @@ TEST(Attributes, InterpolatesPerVertexPerCornerAndPerFace) {
   for (std::size_t i = 0; i < pc.values.size(); ++i) pc.values[i] = static_cast<double>(i);
   AttributeChannel& pf = m.add_channel("id", AttributeKind::kScalar, Storage::kPerFace, 1);
   pf.values = {5, 7};
-  double out[2];
+  double out[4] = {0, 0, 0, -1};  // out[3]: must stay untouched
   interpolate(*m.channel("t"), m, 0, {0.5, 0.25, 0.25}, kNoFace, out);
   EXPECT_DOUBLE_EQ(out[0], 0.25 * 10 + 0.25 * m.channel("t")->values[m.faces[0][2]]);
   interpolate(*m.channel("uv"), m, 1, {0, 1, 0}, kNoFace, out);  // corner 1 of face 1 = element 4
@@ -29,6 +29,17 @@ TEST(Attributes, InterpolatesPerVertexPerCornerAndPerFace) {
   EXPECT_EQ(out[1], 9.0);
   interpolate(*m.channel("id"), m, 1, {0.2, 0.3, 0.5}, kNoFace, out);
   EXPECT_EQ(out[0], 7.0);
+  // Three components (normals, colours) take their own path: each component of each corner.
+  AttributeChannel& rgb = m.add_channel("rgb", AttributeKind::kColor, Storage::kPerVertex, 3);
+  for (std::size_t i = 0; i < rgb.values.size(); ++i) rgb.values[i] = static_cast<double>(i * i);
+  interpolate(*m.channel("rgb"), m, 1, {0.5, 0.25, 0.25}, kNoFace, out);
+  for (int k = 0; k < 3; ++k) {
+    double want = 0;
+    for (int c = 0; c < 3; ++c)
+      want += (c == 0 ? 0.5 : 0.25) * rgb.values[3 * m.faces[1][c] + static_cast<std::size_t>(k)];
+    EXPECT_EQ(out[k], want) << "component " << k;
+  }
+  EXPECT_EQ(out[3], -1.0);
 }
 
 TEST(Attributes, NormalMeasuresUseUnitVectors) {
