@@ -8,7 +8,7 @@ std::vector<double> vertex_deviation(const TriMesh& sampled, const DirectionResu
                                      std::size_t measure) {
   if (d.deviations.values.size() <= measure || d.sample_set.samples.empty())
     throw InvalidInput("per-sample deviations were not kept: cannot colour the mesh");
-  const std::vector<Sample>& samples = d.sample_set.samples;
+  const SampleVector& samples = d.sample_set.samples;
   const std::vector<double>& values = d.deviations.values[measure];
   std::vector<double> out(sampled.num_vertices(), 0.0);
   std::vector<bool> have(sampled.num_vertices(), false);

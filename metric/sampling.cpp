@@ -171,8 +171,9 @@ void add_edge_samples(const TriMesh& m, double step, SampleSet& set) {
   }
 }
 
-// Face samples, faces in parallel: count(f) samples per face, then fill(f, out, n) writes face
-// f's n samples to its own slots, so the set is the same as a serial pass for any thread count.
+// Face samples, faces in parallel: count(f) samples per face, then fill(f, out, n) places face
+// f's n samples in its own slots (raw storage: see SampleAllocator), so the set is the same as a
+// serial pass for any thread count and each slot is first written by the thread that fills it.
 template <class Count, class Fill>
 void add_face_samples(const TriMesh& m, int threads, SampleSet& set, Count&& count, Fill&& fill) {
   const auto faces = static_cast<std::int64_t>(m.faces.size());
@@ -206,12 +207,8 @@ void add_scan_samples(const TriMesh& m, double step, int threads, SampleSet& set
         std::size_t k = 0;
         for_each_scan_point(a, b, c, step, [&](double s, double t) {
           assert(k < n);
-          Sample& smp = out[k++];
-          smp.point = a + s * (b - a) + t * (c - a);
-          smp.face = f;
-          smp.bary = {1.0 - s - t, s, t};
-          smp.weight = w;
-          smp.kind = SampleKind::kFace;
+          ::new (static_cast<void*>(out + k++)) Sample{
+              a + s * (b - a) + t * (c - a), f, kNoFace, {1.0 - s - t, s, t}, w, SampleKind::kFace};
         });
         assert(k == n);
       });
@@ -234,12 +231,9 @@ void add_monte_carlo_samples(const TriMesh& m, std::size_t target, std::uint64_t
         for (std::size_t k = 0; k < n; ++k) {
           const double r = std::sqrt(unit_random(seed, f, 2 * k));
           const double r2 = unit_random(seed, f, 2 * k + 1);
-          Sample& s = out[k];
-          s.bary = {1.0 - r, r * (1.0 - r2), r * r2};
-          s.point = s.bary[0] * a + s.bary[1] * b + s.bary[2] * c;
-          s.face = f;
-          s.weight = weight;
-          s.kind = SampleKind::kFace;
+          const std::array<double, 3> bary{1.0 - r, r * (1.0 - r2), r * r2};
+          ::new (static_cast<void*>(out + k)) Sample{
+              bary[0] * a + bary[1] * b + bary[2] * c, f, kNoFace, bary, weight, SampleKind::kFace};
         }
       });
 }
@@ -322,8 +316,11 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
 
   // Weights: face samples carry area; with face samples present, vertex and edge samples only
   // hunt the maximum (weight 0); edge samples carry length when they are the finest kind.
-  for (Sample& s : set.samples) {
-    if (s.kind == SampleKind::kFace) continue;
+  // Vertex and edge samples come first: the face samples (which keep their weights) are not read.
+  assert(set.vertex_count + set.edge_count + set.face_count == set.samples.size());
+  for (std::size_t i = 0; i < set.vertex_count + set.edge_count; ++i) {
+    Sample& s = set.samples[i];
+    assert(s.kind != SampleKind::kFace);
     if (set.face_count > 0)
       s.weight = 0.0;
     else if (s.kind == SampleKind::kVertex)

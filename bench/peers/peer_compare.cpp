@@ -148,8 +148,9 @@ void morton_sort(meshdev::SampleSet& set, const meshdev::BoundingBox& box) {
                static_cast<std::uint32_t>(i)};
   }
   std::sort(keys.begin(), keys.end());
-  std::vector<meshdev::Sample> sorted(set.samples.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) sorted[i] = set.samples[keys[i].second];
+  meshdev::SampleVector sorted;
+  sorted.reserve(keys.size());
+  for (const auto& key : keys) sorted.push_back(set.samples[key.second]);
   set.samples.swap(sorted);
 }
 

@@ -35,6 +35,41 @@ TEST(Sampling, FaceSamplesLieOnTheirFaceWithValidBarycentrics) {
   }
 }
 
+// The face samplers place each sample in raw storage (SampleAllocator): every field must be
+// written, in the layout vertices, then edges, then faces. Both face samplers, edges included.
+TEST(Sampling, EverySampleIsCompleteAndTheKindsComeInOrder) {
+  TriMesh m = test::icosphere(2);
+  for (FaceSampling faces : {FaceSampling::kScanConversion, FaceSampling::kMonteCarlo}) {
+    SamplingOptions o;
+    o.edges = true;
+    o.faces = faces;
+    o.step_fraction = 0.05;
+    o.target_count = 3000;
+    const SampleSet set = sample_surface(m, o, 2.0);
+    ASSERT_EQ(set.vertex_count + set.edge_count + set.face_count, set.samples.size());
+    ASSERT_GT(set.face_count, 0u);
+    for (std::size_t i = 0; i < set.samples.size(); ++i) {
+      const Sample& s = set.samples[i];
+      const SampleKind want = i < set.vertex_count                    ? SampleKind::kVertex
+                              : i < set.vertex_count + set.edge_count ? SampleKind::kEdge
+                                                                      : SampleKind::kFace;
+      ASSERT_EQ(s.kind, want) << "sample " << i;
+      ASSERT_LT(s.face, m.num_faces()) << "sample " << i;
+      if (want == SampleKind::kVertex) {
+        ASSERT_LT(s.vertex, m.num_vertices()) << "sample " << i;
+        EXPECT_EQ(s.point, m.positions[s.vertex]);
+      } else {
+        ASSERT_EQ(s.vertex, kNoFace) << "sample " << i;
+      }
+      if (want == SampleKind::kFace)
+        ASSERT_GT(s.weight, 0.0) << "sample " << i;
+      else
+        ASSERT_EQ(s.weight, 0.0) << "sample " << i;  // face samples present: hunt the maximum
+      ASSERT_NEAR(s.bary[0] + s.bary[1] + s.bary[2], 1.0, 1e-12) << "sample " << i;
+    }
+  }
+}
+
 TEST(Sampling, FaceWeightsSumToTheAreaAndVertexSamplesOnlyHuntTheMaximum) {
   TriMesh m = test::icosphere(2);
   SamplingOptions o;
