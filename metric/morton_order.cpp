@@ -6,51 +6,39 @@
 #include <numeric>
 
 namespace meshdev {
-namespace {
 
-constexpr std::uint32_t kMaxCell = (1u << 21) - 1;
-
-// The 7 bits of x spread to every third bit (bit k -> bit 3k), for x in [0, 128).
-struct SpreadTable {
-  std::uint64_t bits[128];
-  SpreadTable() {
-    for (std::uint64_t x = 0; x < 128; ++x) {
-      bits[x] = 0;
-      for (int k = 0; k < 7; ++k) bits[x] |= (x >> k & 1u) << (3 * k);
-    }
-  }
-};
-const SpreadTable kSpread;
-
-// The 21 bits of x spread to every third bit.
-std::uint64_t spread21(std::uint32_t x) {
-  return kSpread.bits[x & 127u] | kSpread.bits[x >> 7 & 127u] << 21 |
-         kSpread.bits[x >> 14 & 127u] << 42;
+MortonGrid::MortonGrid(const BoundingBox& box) : min_(box.min) {
+  if (box.empty()) return;
+  const Vec3 extent = box.max - box.min;
+  const double scale = kMaxCell / std::max({extent.x, extent.y, extent.z});
+  if (scale > 0.0 && std::isfinite(scale)) scale_ = scale;  // else one point, or not finite
 }
 
-}  // namespace
+bool stable_bucket_order(const std::uint32_t* bucket, std::size_t n,
+                         std::vector<std::uint32_t>& order) {
+  assert(n < (std::size_t{1} << 32));
+  order.clear();
+  if (std::is_sorted(bucket, bucket + n)) return false;
+  std::vector<std::uint32_t> start(MortonGrid::kBuckets + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++start[bucket[i] + 1];
+  for (std::uint32_t b = 0; b < MortonGrid::kBuckets; ++b) start[b + 1] += start[b];
+  order.resize(n);
+  for (std::size_t i = 0; i < n; ++i) order[start[bucket[i]]++] = static_cast<std::uint32_t>(i);
+  return true;
+}
 
 void morton_order(const Vec3* points, std::size_t n, const BoundingBox& box,
                   std::vector<std::uint32_t>& order, std::vector<std::uint64_t>& keys) {
   assert(n < (std::size_t{1} << 32));
   order.resize(n);
   std::iota(order.begin(), order.end(), 0u);
-  if (n < 3 || box.empty()) return;
-  const Vec3 extent = box.max - box.min;
-  const double scale = kMaxCell / std::max({extent.x, extent.y, extent.z});
-  if (!(scale > 0.0) || !std::isfinite(scale)) return;     // one point, or not finite
-  auto cell = [&](double x, double x0) -> std::uint32_t {  // in [0, kMaxCell]; NaN: 0
-    const double t = (x - x0) * scale;
-    return t >= 0.0 ? (t < kMaxCell ? static_cast<std::uint32_t>(t) : kMaxCell) : 0u;
-  };
+  const MortonGrid grid(box);
+  if (n < 3 || !grid.valid()) return;
   keys.resize(2 * n);  // the codes, then the radix sort's second buffer
   std::uint64_t least = ~std::uint64_t{0}, most = 0;
   std::size_t descents = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& p = points[i];
-    const std::uint64_t code = spread21(cell(p.x, box.min.x)) |
-                               spread21(cell(p.y, box.min.y)) << 1 |
-                               spread21(cell(p.z, box.min.z)) << 2;
+    const std::uint64_t code = grid.code(points[i]);
     keys[i] = code;
     descents += i > 0 && code < keys[i - 1];
     least = std::min(least, code);

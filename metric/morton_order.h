@@ -19,6 +19,70 @@
 
 namespace meshdev {
 
+namespace detail {
+// The 7 bits of x spread to every third bit (bit k -> bit 3k), for x in [0, 128).
+struct MortonSpread {
+  std::uint64_t bits[128] = {};
+  constexpr MortonSpread() {
+    for (std::uint64_t x = 0; x < 128; ++x)
+      for (int k = 0; k < 7; ++k) bits[x] |= (x >> k & 1u) << (3 * k);
+  }
+};
+inline constexpr MortonSpread kMortonSpread{};
+}  // namespace detail
+
+// The cubic grid over a box that the codes are taken on: 2^21 cells per axis.
+class MortonGrid {
+ public:
+  // Buckets: the grid's cells at level kBucketLevels (2^6 per axis; the codes' top 18 bits), in
+  // Morton order.
+  static constexpr int kBucketLevels = 6;
+  static constexpr std::uint32_t kBuckets = 1u << (3 * kBucketLevels);
+
+  explicit MortonGrid(const BoundingBox& box);
+  // False for an empty or non-finite box (or a single point): every point is then in cell 0.
+  bool valid() const { return scale_ > 0.0; }
+  // The Morton code of p's cell, x-y-z interleaved (x in the lowest bit); points outside the box
+  // (or NaN) are clamped to it. O(1).
+  std::uint64_t code(const Vec3& p) const {
+    return spread21(cell(p.x, min_.x)) | spread21(cell(p.y, min_.y)) << 1 |
+           spread21(cell(p.z, min_.z)) << 2;
+  }
+  // p's bucket, in [0, kBuckets): the top 3 x kBucketLevels bits of code(p)'s 63. O(1).
+  std::uint32_t bucket(const Vec3& p) const {
+    static_assert(kBucketLevels <= 7, "one lookup per axis");
+    constexpr int shift = 21 - kBucketLevels;
+    const auto& spread = detail::kMortonSpread.bits;
+    return static_cast<std::uint32_t>(spread[cell(p.x, min_.x) >> shift] |
+                                      spread[cell(p.y, min_.y) >> shift] << 1 |
+                                      spread[cell(p.z, min_.z) >> shift] << 2);
+  }
+
+ private:
+  static constexpr std::uint32_t kMaxCell = (1u << 21) - 1;
+  // The cell of coordinate x along an axis starting at x0: in [0, kMaxCell]; NaN: 0.
+  std::uint32_t cell(double x, double x0) const {
+    const double t = (x - x0) * scale_;
+    return t >= 0.0 ? (t < kMaxCell ? static_cast<std::uint32_t>(t) : kMaxCell) : 0u;
+  }
+  // The 21 bits of x spread to every third bit.
+  static std::uint64_t spread21(std::uint32_t x) {
+    const auto& spread = detail::kMortonSpread.bits;
+    return spread[x & 127u] | spread[x >> 7 & 127u] << 21 | spread[x >> 14 & 127u] << 42;
+  }
+
+  Vec3 min_;
+  double scale_ = 0.0;
+};
+
+// Writes to `order` the permutation that sorts `bucket[0..n)` (values < MortonGrid::kBuckets)
+// stably: a counting sort. Returns false, with `order` empty, if they are already sorted (the
+// identity). For a set too large for morton_order's runs to be near each other: sorted by
+// bucket first, its runs cover a few coarse cells each, and morton_order orders each run.
+// O(n + kBuckets); n < 2^32.
+bool stable_bucket_order(const std::uint32_t* bucket, std::size_t n,
+                         std::vector<std::uint32_t>& order);
+
 // Writes to `order` the permutation of [0, n) that visits points[0..n) in Morton order of their
 // cells in `box`; `keys` is scratch. The identity if the codes are already non-decreasing, or if
 // the box is empty or not finite. Points outside the box (or NaN) are clamped to it.

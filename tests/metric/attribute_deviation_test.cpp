@@ -41,6 +41,8 @@ TEST(AttributeDeviation, EqualsThePerTieMinimumOfAttributeDistanceOverTheBruteFo
   so.faces = FaceSampling::kMonteCarlo;
   so.target_count = 2000;
   const SampleSet samples = sample_surface(a, so, 1.0);
+  // Several chunks of 1,024: the set is queried in coarse Morton order, then each chunk in its own.
+  ASSERT_GT(samples.samples.size(), 2048u);
   const auto bvh = make_nearest_point_index(b, IndexKind::kBvh);
   const auto brute = make_nearest_point_index(b, IndexKind::kBruteForce);
   const SampleDeviations d =
@@ -52,8 +54,10 @@ TEST(AttributeDeviation, EqualsThePerTieMinimumOfAttributeDistanceOverTheBruteFo
   for (std::size_t i = 0; i < samples.samples.size(); ++i) {
     const Sample& s = samples.samples[i];
     Vec3 corners[3];
-    brute->find(s.point, sample_hint(a, s, corners), ties);
+    const double distance = brute->find(s.point, sample_hint(a, s, corners), ties);
+    ASSERT_EQ(d.values[0][i], distance) << "sample " << i;
     ASSERT_EQ(d.tie_count[i], ties.size()) << "sample " << i;
+    ASSERT_EQ(d.nearest_feature[i], ties.front().feature) << "sample " << i;
     with_ties += ties.size() > 1;
     for (std::size_t m = 1; m < plan.measures.size(); ++m) {
       const Measure& measure = plan.measures[m];

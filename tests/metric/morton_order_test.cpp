@@ -93,6 +93,51 @@ TEST(MortonOrder, RunsOfASortedSetAreLeftAsTheyAre) {
   }
 }
 
+TEST(MortonOrder, BucketsAreTheCodesTopBits) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 3.0);  // partly outside the box: clamped
+  BoundingBox box;
+  box.extend({0, 0, 0});
+  box.extend({2, 1, 0.5});
+  const MortonGrid grid(box);
+  ASSERT_TRUE(grid.valid());
+  for (int i = 0; i < 10000; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    ASSERT_EQ(grid.bucket(p), grid.code(p) >> (63 - 3 * MortonGrid::kBucketLevels)) << i;
+  }
+  EXPECT_EQ(grid.bucket({2, 1, 0.5}),
+            grid.code({2, 1, 0.5}) >> (63 - 3 * MortonGrid::kBucketLevels));
+  EXPECT_EQ(grid.bucket({std::nan(""), 0, 0}),
+            grid.code({std::nan(""), 0, 0}) >> (63 - 3 * MortonGrid::kBucketLevels));
+  EXPECT_LT(grid.code({2, 1, 0.5}), std::uint64_t{1} << 63);
+}
+
+// The twin of the counting sort: std::stable_sort of the indices by bucket.
+TEST(MortonOrder, StableBucketOrderIsAStableSort) {
+  std::mt19937_64 rng(11);
+  std::vector<std::uint32_t> order;
+  for (std::size_t n : {1u, 2u, 1000u, 70000u}) {
+    std::uniform_int_distribution<std::uint32_t> b(0, n < 100 ? 3 : MortonGrid::kBuckets - 1);
+    std::vector<std::uint32_t> bucket(n);
+    for (auto& x : bucket) x = static_cast<std::uint32_t>(b(rng));
+    std::vector<std::uint32_t> want(n);
+    std::iota(want.begin(), want.end(), 0u);
+    std::stable_sort(want.begin(), want.end(),
+                     [&](std::uint32_t x, std::uint32_t y) { return bucket[x] < bucket[y]; });
+    const bool moved = stable_bucket_order(bucket.data(), n, order);
+    if (std::is_sorted(bucket.begin(), bucket.end())) {
+      EXPECT_FALSE(moved) << n;
+      EXPECT_TRUE(order.empty()) << n;
+    } else {
+      EXPECT_TRUE(moved) << n;
+      EXPECT_EQ(order, want) << n;
+    }
+  }
+  std::vector<std::uint32_t> sorted = {0, 0, 5, 7, 7, MortonGrid::kBuckets - 1};
+  EXPECT_FALSE(stable_bucket_order(sorted.data(), sorted.size(), order));
+  EXPECT_TRUE(order.empty());
+}
+
 TEST(MortonOrder, IdentityForOnePointOrANonFiniteBox) {
   std::vector<std::uint32_t> order;
   std::vector<std::uint64_t> keys;
