@@ -27,6 +27,7 @@ std::size_t NearestPointIndex::find_batch(const Vec3* points, const QueryHint* h
   out.hits.clear();
   out.first[0] = 0;
   out.packet_queries = 0;
+  out.block_packet_queries = 0;
   std::vector<SurfaceHit> ties;
   std::uint32_t previous = kNoFace;
   std::size_t i = 0;

@@ -59,6 +59,7 @@ struct BatchHits {
   std::vector<SurfaceHit> hits;
   std::size_t packet_queries = 0;  // how many were answered in packets (TriangleBvh), for tests
                                    // and benchmarks; the answers do not depend on it
+  std::size_t block_packet_queries = 0;  // of those, how many in block packets
 
   std::size_t size() const { return distance.size(); }
   const SurfaceHit* ties_begin(std::size_t i) const { return hits.data() + first[i]; }

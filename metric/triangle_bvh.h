@@ -31,7 +31,11 @@
 //        a float lower bound from precomputed unit plane and edge normals (one multiply-add per
 //        coordinate; SIMD kernels chosen at run time, metric/plane_bounds.h), and evaluates the
 //        survivors exactly, nearest bound first. Same answers as find(); packets whose reach
-//        holds too many faces fall back to find().
+//        holds too many faces fall back to find(). Where queries are sparse on the target
+//        (fewer than 8 within a mean edge), 3 to 11 within two mean edges form a block packet:
+//        the centre query bounds the others as above, one traversal gathers the leaf blocks
+//        within reach, and each query searches those blocks as find() does, nearest box first.
+//        Neither kind of packet changes any answer.
 // Ref: Wald, "On fast construction of SAH-based bounding volume hierarchies" (2007) for binning;
 //      Wald et al., "Getting rid of packets" (2008) and Embree for 4-wide nodes.
 #include <cstdint>
@@ -86,6 +90,7 @@ class TriangleBvh final : public NearestPointIndex {
     std::uint32_t face = kNoFace;
   };
   struct PacketScratch;
+  struct Search;                         // one query's search state (triangle_bvh.cpp)
   static constexpr int kCacheBits = 10;  // plane cache slots of a batch: 2^kCacheBits
 
   void build(int threads);
@@ -98,8 +103,31 @@ class TriangleBvh final : public NearestPointIndex {
   std::size_t find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
                           std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
                           BatchHits& out) const;
+  // Narrows the search's culling radii to the tie limit `limit_dist` (absolute, not squared);
+  // they never grow.
+  void narrow(Search& s, double limit_dist) const;
+  // Evaluates `face` exactly and keeps it if it is within the tie limit; a new best narrows.
+  void consider(Search& s, std::uint32_t face) const;
+  // Tests the (up to) four triangles of a leaf block: a float lower bound per triangle, then
+  // the survivors exactly, nearest bound first.
+  void search_leaf(const Leaf& leaf, Search& s) const;
   // The planes of `face`, from the batch's cache or computed into it.
   const FacePlanes& face_planes(std::uint32_t face, PacketScratch& scratch) const;
+  // Answers queries [base, base + n) of a batch (sparse on the target) as a block packet: the
+  // centre query in full, then one traversal gathers the leaf blocks within reach of any query
+  // (at most kMaxBlocks), and each other query searches those blocks as find() would, nearest
+  // box first, from the centre's upper bound. Returns as find_packet does.
+  std::size_t find_block_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
+                                std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
+                                BatchHits& out) const;
+  // Calls at_block(leaf block, its box lo, hi, the box [lo, hi] as splats, the squared reach)
+  // for every leaf block whose box lies within `reach` (float frame) of the box [lo, hi], until
+  // it returns false; returns false if it did.
+  template <class AtBlock>
+  bool visit_blocks(const float lo[3], const float hi[3], double reach, AtBlock&& at_block) const;
+  // The leaf blocks within `reach` of [lo, hi] into scratch; false if more than kMaxBlocks.
+  bool gather_blocks(const float lo[3], const float hi[3], double reach,
+                     PacketScratch& scratch) const;
   // The faces whose float boxes lie within `reach` (float frame) of the box [lo, hi]; false if
   // there are more than `max_faces`.
   bool gather(const float lo[3], const float hi[3], double reach, std::size_t max_faces,
@@ -113,7 +141,8 @@ class TriangleBvh final : public NearestPointIndex {
   bool cull_scale_ = true;       // false: the mesh is too small or large to cull (see kMinExtent)
   double corner_error_ = 0;      // max |float corner - exact corner| in the float frame
   double packet_extent_ = 0;     // largest packet box diagonal (float frame) for find_batch
-  std::uint32_t root_ = 0;       // child ref of the root
+  double block_packet_extent_ = 0;  // the same for block packets
+  std::uint32_t root_ = 0;          // child ref of the root
   std::vector<Node> nodes_;
   std::vector<Leaf> leaves_;
   int depth_ = 0;

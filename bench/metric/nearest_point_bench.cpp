@@ -62,7 +62,8 @@ void BM_NearestQuery(benchmark::State& state) {
 BENCHMARK(BM_NearestQuery)->Args({5, 7})->Args({7, 5})->Args({7, 7});
 
 // The same queries in batches of 1024 (find_batch: coherent runs answered in packets), one
-// thread; counter packet_share = fraction of queries answered in packets.
+// thread; counters packet_share = fraction of queries answered in packets, block_share = in
+// block packets (where samples are sparse on the target).
 void BM_NearestBatch(benchmark::State& state) {
   const TriMesh& target = sphere(static_cast<int>(state.range(0)));
   TriangleBvh bvh(target);
@@ -71,17 +72,19 @@ void BM_NearestBatch(benchmark::State& state) {
   for (const Sample& x : s.samples) points.push_back(x.point);
   constexpr std::size_t kBatch = 1024;
   BatchHits batch;
-  std::size_t i = 0, queries = 0, in_packets = 0;
+  std::size_t i = 0, queries = 0, in_packets = 0, in_blocks = 0;
   for (auto _ : state) {
     const std::size_t count = std::min(kBatch, points.size() - i);
     const std::size_t answered = bvh.find_batch(points.data() + i, nullptr, count, batch);
     benchmark::DoNotOptimize(batch.distance.data());
     queries += answered;
     in_packets += batch.packet_queries;
+    in_blocks += batch.block_packet_queries;
     i = (i + answered) % points.size();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(queries));
   state.counters["packet_share"] = static_cast<double>(in_packets) / static_cast<double>(queries);
+  state.counters["block_share"] = static_cast<double>(in_blocks) / static_cast<double>(queries);
 }
 BENCHMARK(BM_NearestBatch)->Args({5, 7})->Args({7, 5})->Args({7, 7});
 

@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "metric/errors.h"
+#include "metric/morton_order.h"
 #include "metric/nearest_point_brute.h"
 #include "metric/triangle_bvh.h"
 #include "metric/triangle_grid.h"
@@ -375,6 +377,89 @@ TEST(NearestPoint, BvhBatchEqualsBruteForceOnSoupsAndStressMeshes) {
       }
   }
   EXPECT_GT(packets, queries / 10);
+}
+
+// Query streams sparse on the target, as where a coarse mesh is sampled against a fine one: one
+// query per face of `m`, the faces taken in the Morton order of their centres, so consecutive
+// queries are about one face apart (too far for packets of faces, near enough for block
+// packets). Each query is at random barycentrics on its face (with `hinted`, carrying the face as
+// its source triangle), pushed off by `offset` in a random direction and by `outward` away from
+// the centre of the mesh's box (so queries far off the surface stay coherent); one in 9 is
+// exactly at a corner (a tie with every face around it).
+QueryStream sparse_queries(const TriMesh& m, std::uint64_t seed, double offset, bool hinted,
+                           double outward = 0.0) {
+  std::vector<Vec3> centres;
+  BoundingBox box;
+  for (const Triangle& t : m.faces) {
+    centres.push_back((1.0 / 3.0) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]));
+    box.extend(centres.back());
+  }
+  const MortonGrid grid(box);
+  std::vector<std::uint32_t> order(m.faces.size());
+  for (std::uint32_t f = 0; f < order.size(); ++f) order[f] = f;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return grid.code(centres[a]) < grid.code(centres[b]);
+  });
+  QueryStream qs;
+  qs.points.reserve(order.size());
+  qs.corners.reserve(3 * order.size());  // pointers into it are taken below
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0), s(-1.0, 1.0);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const Triangle& t = m.faces[order[k]];
+    double a = u(rng), b = u(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    if (k % 9 == 4) a = 1.0, b = 0.0;
+    Vec3 p = (1.0 - a - b) * m.positions[t[0]] + a * m.positions[t[1]] + b * m.positions[t[2]];
+    if (offset > 0.0) p = p + offset * Vec3{s(rng), s(rng), s(rng)};
+    if (outward > 0.0) {
+      const Vec3 d = p - 0.5 * (box.min + box.max);
+      p = p + (outward / norm(d)) * d;
+    }
+    QueryHint hint;
+    for (int c = 0; c < 3; ++c) qs.corners.push_back(m.positions[t[c]]);
+    if (hinted && offset == 0.0 && outward == 0.0) {
+      hint.source = &qs.corners[3 * k];
+      hint.source_bary = {1.0 - a - b, a, b};
+    }
+    qs.points.push_back(p);
+    qs.hints.push_back(hint);
+  }
+  return qs;
+}
+
+TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
+  const TriMesh sphere = test::icosphere(3);
+  // (offset, outward): on the surface, just off it, and far off it (where a packet's reach is
+  // set by the distance itself, not by the queries' separation).
+  const std::pair<double, double> pushes[] = {{0.0, 0.0},  {1e-9, 0.0}, {1e-3, 0.0},
+                                              {2e-2, 0.0}, {0.0, 0.3},  {1e-3, 0.3}};
+  for (const auto& [offset, outward] : pushes) {
+    for (bool hinted : {false, true}) {
+      const QueryStream qs = sparse_queries(sphere, 43, offset, hinted, outward);
+      const std::string what = "offset " + std::to_string(offset) + " outward " +
+                               std::to_string(outward) + (hinted ? " hinted" : "");
+      const TriangleBvh bvh(sphere);
+      BatchHits batch;
+      ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
+                qs.points.size());
+      // Most of these queries must go through block packets, or this test checks nothing new.
+      EXPECT_GT(batch.block_packet_queries, qs.points.size() / 2) << what;
+      expect_batch_is_the_oracle(sphere, qs, what);
+      if (HasFailure()) return;
+    }
+  }
+  // Slivers, tiny faces and nearly coplanar fans, far from the origin and at extreme scales.
+  for (double scale : {1e-6, 1.0, 1e6})
+    for (double offset : {0.0, 1e8}) {
+      const TriMesh m = stress_mesh(53, scale, offset);
+      for (double off : {0.0, 1e-2 * scale}) {
+        expect_batch_is_the_oracle(m, sparse_queries(m, 59, off, true),
+                                   "stress scale " + std::to_string(scale) + " offset " +
+                                       std::to_string(offset) + " off " + std::to_string(off));
+        if (HasFailure()) return;
+      }
+    }
 }
 
 // Runs `points` through TriangleBvh::find_batch on `m` and checks every answer against the
