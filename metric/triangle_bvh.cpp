@@ -526,7 +526,7 @@ bool TriangleBvh::to_frame(const Vec3& p, double q[3], float qf[3], double& slac
   slack = corner_error_;
   if (cull) {
     const double ex = qf[0] - q[0], ey = qf[1] - q[1], ez = qf[2] - q[2];
-    slack += std::sqrt(ex * ex + ey * ey + ez * ez) +
+    slack += std::fabs(ex) + std::fabs(ey) + std::fabs(ez) +  // >= the rounding's length
              4e-16 * (std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + 3.0);
   }
   return cull;
