@@ -1127,7 +1127,14 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
       const float least = std::min(std::min(lanes[0], lanes[1]), std::min(lanes[2], lanes[3]));
       if (!(least <= s.box_limit2)) break;
       std::size_t at = 0;
-      while (dist[at] != least) ++at;
+      const F4 wanted = F4::splat(least);
+      for (;; at += 4) {
+        const int hit = equal_mask(F4::load(dist + at), wanted);
+        if (hit != 0) {
+          at += static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(hit)));
+          break;
+        }
+      }
       dist[at] = kInf;
       search_leaf(leaves_[scratch.block[at]], s);
     }
