@@ -91,7 +91,7 @@ class TriangleBvh final : public NearestPointIndex {
   };
   struct PacketScratch;
   struct Search;                         // one query's search state (triangle_bvh.cpp)
-  static constexpr int kCacheBits = 10;  // plane cache slots of a batch: 2^kCacheBits
+  static constexpr int kCacheBits = 12;  // plane cache slots of a batch: 2^kCacheBits
 
   void build(int threads);
   // The query in the float frame: coordinates, their float rounding, and the culling slack
