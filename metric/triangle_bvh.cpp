@@ -1077,7 +1077,8 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
     packet_reach =
         std::max(packet_reach, std::max(initial_limit[k], floor) * scale_ + scratch.slack[k]);
   }
-  if (!std::isfinite(packet_reach) || !gather_blocks(scratch.lo, scratch.hi, packet_reach, scratch))
+  if (!std::isfinite(packet_reach) ||
+      !gather_blocks(scratch.lo, scratch.hi, packet_reach, scratch) || scratch.block_count == 0)
     return 0;
   const std::size_t blocks = scratch.block_count;
   for (int k = 0; k < 3; ++k)  // padding lanes: never within reach
