@@ -221,6 +221,14 @@ inline void cross3(const F4 a[3], const F4 b[3], F4 out[3]) {
   out[2] = a[0] * b[1] - a[1] * b[0];
 }
 
+// Appends query i's answer (its distance and ties) to a batch's flattened results.
+inline void append_answer(BatchHits& out, std::size_t i, double distance,
+                          const std::vector<SurfaceHit>& ties) {
+  out.distance[i] = distance;
+  out.hits.insert(out.hits.end(), ties.begin(), ties.end());
+  out.first[i + 1] = static_cast<std::uint32_t>(out.hits.size());
+}
+
 // A number for each index built in this process, never reused (the plane caches' owner).
 std::uint64_t next_id() {
   static std::atomic<std::uint64_t> counter{0};
@@ -232,7 +240,8 @@ std::uint64_t next_id() {
 TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
     : eval_(target, ties, /*with_spheres=*/false),
       kernels_(&plane_kernels(simd_level())),
-      id_(next_id()) {
+      id_(next_id()),
+      check_reach_(std::sqrt(eval_.exact_check_sq)) {
   build(threads);
 }
 
@@ -557,7 +566,7 @@ struct TriangleBvh::Search {
   // A face identical to the query's source triangle counts as distance 0 however far rounding
   // put the query from it (FaceEvaluator::evaluate), so the search never narrows below the reach
   // of that check. The radii only shrink (a block packet starts them from an upper bound).
-  const double r = std::max(limit_dist, s.floor_dist) * scale_ + s.slack;
+  const double r = frame_reach(limit_dist, s.floor_dist, s.slack);
   s.box_limit2 = std::min(s.box_limit2, round_up(r * r * (1.0 + 1e-5)));
   s.leaf_limit = std::min(s.leaf_limit, round_up(r * (1.0 + 1e-6)));
 }
@@ -643,7 +652,7 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
                          std::vector<SurfaceHit>& ties) const {
   ties.clear();
   Search s(p, hint, ties);
-  if (hint.source != nullptr) s.floor_dist = std::sqrt(eval_.exact_check_sq);
+  s.floor_dist = floor_of(hint);
   // The query in the float frame, and how far rounding may have moved it (plus the corners').
   double q[3];
   float qf[3];
@@ -713,6 +722,7 @@ struct TriangleBvh::PacketScratch {
   std::vector<float> bound;
   std::vector<std::uint32_t> survivors;
   std::vector<SurfaceHit> ties, center_ties;
+  double center_distance = 0;     // the packet's centre query's answer (packet_bounds)
   std::vector<FacePlanes> cache;  // 2^kCacheBits slots, allocated with the first packet
   std::uint64_t cache_owner = 0;  // the TriangleBvh::id_ whose planes the cache holds
   float lo[3], hi[3];             // the packet's box (float frame), set while it grows
@@ -775,9 +785,7 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
   auto single = [&](std::size_t i) {
     QueryHint hint = hints != nullptr ? hints[i] : QueryHint{};
     if (hint.start_face == kNoFace) hint.start_face = previous;
-    out.distance[i] = find(points[i], hint, scratch.ties);
-    out.hits.insert(out.hits.end(), scratch.ties.begin(), scratch.ties.end());
-    out.first[i + 1] = static_cast<std::uint32_t>(out.hits.size());
+    append_answer(out, i, find(points[i], hint, scratch.ties), scratch.ties);
     previous = scratch.ties.front().face;
   };
   const double max_diag2 = packet_extent_ * packet_extent_;
@@ -924,45 +932,51 @@ bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double rea
       });
 }
 
-std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
-                                     std::size_t n, std::uint32_t start_face,
-                                     PacketScratch& scratch, BatchHits& out) const {
+double TriangleBvh::packet_bounds(const Vec3* points, const QueryHint* hints, std::size_t base,
+                                  std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
+                                  double* limit, double* reach) const {
   assert(n >= 2 && n <= kPacketSize);
   const QueryHint no_hint;
   auto hint_of = [&](std::size_t k) -> const QueryHint& {
     return hints != nullptr ? hints[base + k] : no_hint;
   };
-  const double floor_dist = std::sqrt(eval_.exact_check_sq);
-
   // The centre query, in full. Its distance bounds every other query's by the triangle
   // inequality: d(p) <= d(c) + |p - c| (d: geometric distances).
   const std::size_t c = n / 2;
   QueryHint center_hint = hint_of(c);
   if (center_hint.start_face == kNoFace) center_hint.start_face = start_face;
-  const double d_c = find(points[base + c], center_hint, scratch.center_ties);
-
-  // Each query's reach in the float frame: the tie limit of that upper bound (1e-9 more for the
-  // rounding of computed distances), at least the identical-triangle check's, plus the slack.
-  // Limits here are distances, not squared (no square root of a square on the way).
-  double separation[kPacketSize];
-  auto reach = [&](std::size_t k, double limit) {
-    const double floor = hint_of(k).source != nullptr ? floor_dist : 0.0;
-    return std::max(limit, floor) * scale_ + scratch.slack[k];
-  };
+  scratch.center_distance = find(points[base + c], center_hint, scratch.center_ties);
   // The centre's distance may be 0 by the identical-triangle rule while it lies up to that
-  // check's reach from B (FaceEvaluator::evaluate): its geometric distance is at most d_c plus
-  // that reach, and only geometric distances obey the triangle inequality.
-  const double center_geometric = d_c + (hint_of(c).source != nullptr ? floor_dist : 0.0);
-  auto initial_limit = [&](std::size_t k) {
-    return eval_.limit((center_geometric + separation[k]) * (1.0 + 1e-9));
-  };
-  double initial_reach[kPacketSize];
+  // check's reach from B (FaceEvaluator::evaluate): its geometric distance is at most its answer
+  // plus that reach, and only geometric distances obey the triangle inequality.
+  const double center_geometric = scratch.center_distance + floor_of(hint_of(c));
+  // Each query's tie limit of that upper bound (1e-9 more for the rounding of computed
+  // distances) and its reach in the float frame. Limits here are distances, not squared (no
+  // square root of a square on the way).
   double packet_reach = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
-    separation[k] = norm(points[base + k] - points[base + c]);
-    initial_reach[k] = reach(k, initial_limit(k));
-    packet_reach = std::max(packet_reach, initial_reach[k]);
+    const double separation = norm(points[base + k] - points[base + c]);
+    limit[k] = eval_.limit((center_geometric + separation) * (1.0 + 1e-9));
+    reach[k] = frame_reach(limit[k], floor_of(hint_of(k)), scratch.slack[k]);
+    packet_reach = std::max(packet_reach, reach[k]);
   }
+  return packet_reach;
+}
+
+std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
+                                     std::size_t n, std::uint32_t start_face,
+                                     PacketScratch& scratch, BatchHits& out) const {
+  const QueryHint no_hint;
+  auto hint_of = [&](std::size_t k) -> const QueryHint& {
+    return hints != nullptr ? hints[base + k] : no_hint;
+  };
+  const std::size_t c = n / 2;
+  double initial_limit[kPacketSize], initial_reach[kPacketSize];
+  const double packet_reach =
+      packet_bounds(points, hints, base, n, start_face, scratch, initial_limit, initial_reach);
+  auto reach = [&](std::size_t k, double limit) {
+    return frame_reach(limit, floor_of(hint_of(k)), scratch.slack[k]);
+  };
   if (!std::isfinite(packet_reach) ||
       !gather(scratch.lo, scratch.hi, packet_reach, kMaxCandidates, scratch.faces) ||
       scratch.faces.empty())
@@ -998,9 +1012,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0 && out.hits.size() >= BatchHits::kMaxHits) return k;  // answered k of n
     if (k == c) {
-      out.distance[base + k] = d_c;
-      out.hits.insert(out.hits.end(), scratch.center_ties.begin(), scratch.center_ties.end());
-      out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
+      append_answer(out, base + k, scratch.center_distance, scratch.center_ties);
       continue;
     }
     const float* qf = scratch.qf[k];
@@ -1044,9 +1056,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       ties.push_back(h);
     }
     detail::keep_ties(ties, limit_sq);
-    out.distance[base + k] = best;
-    out.hits.insert(out.hits.end(), ties.begin(), ties.end());
-    out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
+    append_answer(out, base + k, best, ties);
   }
   return n;
 }
@@ -1055,28 +1065,14 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
                                            std::size_t base, std::size_t n,
                                            std::uint32_t start_face, PacketScratch& scratch,
                                            BatchHits& out) const {
-  assert(n >= 2 && n <= kPacketSize);
   const QueryHint no_hint;
   auto hint_of = [&](std::size_t k) -> const QueryHint& {
     return hints != nullptr ? hints[base + k] : no_hint;
   };
-  const double floor_dist = std::sqrt(eval_.exact_check_sq);
-
-  // The centre query in full; its distance bounds the others' (as in find_packet).
   const std::size_t c = n / 2;
-  QueryHint center_hint = hint_of(c);
-  if (center_hint.start_face == kNoFace) center_hint.start_face = start_face;
-  const double d_c = find(points[base + c], center_hint, scratch.center_ties);
-  const double center_geometric = d_c + (hint_of(c).source != nullptr ? floor_dist : 0.0);
-  double initial_limit[kPacketSize];
-  double packet_reach = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    const double separation = norm(points[base + k] - points[base + c]);
-    initial_limit[k] = eval_.limit((center_geometric + separation) * (1.0 + 1e-9));
-    const double floor = hint_of(k).source != nullptr ? floor_dist : 0.0;
-    packet_reach =
-        std::max(packet_reach, std::max(initial_limit[k], floor) * scale_ + scratch.slack[k]);
-  }
+  double initial_limit[kPacketSize], initial_reach[kPacketSize];
+  const double packet_reach =
+      packet_bounds(points, hints, base, n, start_face, scratch, initial_limit, initial_reach);
   if (!std::isfinite(packet_reach) ||
       !gather_blocks(scratch.lo, scratch.hi, packet_reach, scratch) || scratch.block_count == 0)
     return 0;
@@ -1092,16 +1088,14 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0 && out.hits.size() >= BatchHits::kMaxHits) return k;  // answered k of n
     if (k == c) {
-      out.distance[base + k] = d_c;
-      out.hits.insert(out.hits.end(), scratch.center_ties.begin(), scratch.center_ties.end());
-      out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
+      append_answer(out, base + k, scratch.center_distance, scratch.center_ties);
       continue;
     }
     const QueryHint& hint = hint_of(k);
     std::vector<SurfaceHit>& ties = scratch.ties;
     ties.clear();
     Search s(points[base + k], hint, ties);
-    if (hint.source != nullptr) s.floor_dist = floor_dist;
+    s.floor_dist = floor_of(hint);
     s.cull = true;  // packets hold only queries to_frame can cull
     s.slack = scratch.slack[k];
     for (int a = 0; a < 3; ++a) s.pf[a] = F4::splat(scratch.qf[k][a]);
@@ -1140,9 +1134,7 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
       search_leaf(leaves_[scratch.block[at]], s);
     }
     detail::keep_ties(ties, s.limit);
-    out.distance[base + k] = std::sqrt(s.best_sq);
-    out.hits.insert(out.hits.end(), ties.begin(), ties.end());
-    out.first[base + k + 1] = static_cast<std::uint32_t>(out.hits.size());
+    append_answer(out, base + k, std::sqrt(s.best_sq), ties);
   }
   return n;
 }

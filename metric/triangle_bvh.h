@@ -38,6 +38,7 @@
 //        Neither kind of packet changes any answer.
 // Ref: Wald, "On fast construction of SAH-based bounding volume hierarchies" (2007) for binning;
 //      Wald et al., "Getting rid of packets" (2008) and Embree for 4-wide nodes.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -103,6 +104,23 @@ class TriangleBvh final : public NearestPointIndex {
   std::size_t find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
                           std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
                           BatchHits& out) const;
+  // The reach of the identical-triangle check for a query with this hint (FaceEvaluator):
+  // the search never narrows below it. 0 without a source triangle.
+  double floor_of(const QueryHint& hint) const {
+    return hint.source != nullptr ? check_reach_ : 0.0;
+  }
+  // A tie limit (absolute, not squared) as a culling radius in the float frame: at least
+  // `floor`, plus the query's rounding slack (to_frame).
+  double frame_reach(double limit, double floor, double slack) const {
+    return std::max(limit, floor) * scale_ + slack;
+  }
+  // Answers the centre query of the packet [base, base + n) in full (scratch.center_distance,
+  // scratch.center_ties) and bounds every query by it (triangle inequality): limit[k], the tie
+  // limit of d(centre) + |p_k - centre| (absolute), and reach[k], that limit as a radius in the
+  // float frame. Returns the largest reach.
+  double packet_bounds(const Vec3* points, const QueryHint* hints, std::size_t base, std::size_t n,
+                       std::uint32_t start_face, PacketScratch& scratch, double* limit,
+                       double* reach) const;
   // Narrows the search's culling radii to the tie limit `limit_dist` (absolute, not squared);
   // they never grow.
   void narrow(Search& s, double limit_dist) const;
@@ -136,6 +154,7 @@ class TriangleBvh final : public NearestPointIndex {
   detail::FaceEvaluator eval_;
   const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)
   std::uint64_t id_;             // unique in the process: owner of the threads' plane caches
+  double check_reach_ = 0;       // sqrt(eval_.exact_check_sq): the identical-triangle check's reach
   Vec3 origin_;                  // centre of the target's bounding box
   double scale_ = 1;             // float frame = (x - origin_) * scale_
   bool cull_scale_ = true;       // false: the mesh is too small or large to cull (see kMinExtent)
