@@ -1,5 +1,7 @@
 #include "metric/io/read_ply.h"
 
+#include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -149,6 +151,49 @@ struct ScalarOut {
   std::vector<double> values;
 };
 
+// The binary value of type `t` at `at` (byte-swapped first if `swap`): integers exactly, floats
+// as double. Each case copies a fixed size, so the compiler turns it into one load.
+template <class T>
+T load_binary(const char* at, bool swap) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, at, sizeof(T));
+  if (swap) std::reverse(b, b + sizeof(T));
+  T x;
+  std::memcpy(&x, b, sizeof(T));
+  return x;
+}
+[[gnu::always_inline]] inline Value decode_binary(PlyType t, const char* at, bool swap) {
+  Value v;
+  switch (t) {
+    case PlyType::kInt8:
+      v.i = load_binary<std::int8_t>(at, swap);
+      break;
+    case PlyType::kUint8:
+      v.i = load_binary<std::uint8_t>(at, swap);
+      break;
+    case PlyType::kInt16:
+      v.i = load_binary<std::int16_t>(at, swap);
+      break;
+    case PlyType::kUint16:
+      v.i = load_binary<std::uint16_t>(at, swap);
+      break;
+    case PlyType::kInt32:
+      v.i = load_binary<std::int32_t>(at, swap);
+      break;
+    case PlyType::kUint32:
+      v.i = load_binary<std::uint32_t>(at, swap);
+      break;
+    case PlyType::kFloat32:
+      v.d = load_binary<float>(at, swap);
+      return v;
+    case PlyType::kFloat64:
+      v.d = load_binary<double>(at, swap);
+      return v;
+  }
+  v.d = static_cast<double>(v.i);
+  return v;
+}
+
 class PlyParser {
  public:
   PlyParser(const std::string& path, std::string_view content) : path_(path), data_(content) {}
@@ -168,10 +213,36 @@ class PlyParser {
   void plan_face(Element& e);
   void read_body();
   void read_element(Element& e);
+  // Binary fast path: reads the leading records of e that are well formed, for the two layouts
+  // nearly every binary file has (a vertex element of scalar properties; a face element holding
+  // only its vertex_indices list), and returns how many it read. The generic loop of
+  // read_element goes on from there, so a malformed record is reported by the same code, with
+  // the same message, whichever path met it first. 0 for other elements.
+  std::uint64_t read_binary_records(const Element& e, bool is_vertex, bool is_face);
+  // read_binary_records for a face element of one index list: count_at and item_at decode the
+  // list count and an index at a byte address.
+  template <class CountAt, class ItemAt>
+  std::uint64_t read_index_lists(const Element& e, CountAt count_at, ItemAt item_at);
+  // Stores the finite value d of scalar property p of vertex i.
+  void store_vertex_value(const Property& p, std::size_t i, double d);
 
   // Value sources.
   void begin_record(const Element& e, std::uint64_t r);
-  Value read_value(PlyType t, const Element& e, std::uint64_t r, const std::string& prop);
+  // The next value of type t (property `prop` of record r of e). Binary values with enough data
+  // left are decoded here, inline in the record loop; ascii values and the truncation error out
+  // of line.
+  Value read_value(PlyType t, const Element& e, std::uint64_t r, const std::string& prop) {
+    if (header_.format != Format::kAscii) {
+      const std::size_t n = type_size(t);
+      if (data_.size() - pos_ >= n) {
+        const Value v = decode_binary(t, data_.data() + pos_, swap_);
+        pos_ += n;
+        return v;
+      }
+    }
+    return read_value_slow(t, e, r, prop);
+  }
+  Value read_value_slow(PlyType t, const Element& e, std::uint64_t r, const std::string& prop);
   void end_record(const Element& e, std::uint64_t r);
 
   std::string element_ref(const Element& e, std::uint64_t r) const {
@@ -182,6 +253,7 @@ class PlyParser {
   std::string_view data_;
   Header header_;
   bool little_host_ = true;
+  bool swap_ = false;  // binary data in the other byte order than the host's
   // ascii state
   LineReader lines_{""};
   Tokens tokens_{""};
@@ -431,7 +503,8 @@ void PlyParser::end_record(const Element& e, std::uint64_t r) {
          element_ref(e, r) + ": extra value " + quoted(extra) + " after the declared properties");
 }
 
-Value PlyParser::read_value(PlyType t, const Element& e, std::uint64_t r, const std::string& prop) {
+Value PlyParser::read_value_slow(PlyType t, const Element& e, std::uint64_t r,
+                                 const std::string& prop) {
   Value v;
   if (header_.format == Format::kAscii) {
     std::string_view tok;
@@ -455,65 +528,102 @@ Value PlyParser::read_value(PlyType t, const Element& e, std::uint64_t r, const 
     v.d = static_cast<double>(v.i);
     return v;
   }
-  const std::size_t n = type_size(t);
-  if (data_.size() - pos_ < n)
-    fail("byte " + std::to_string(pos_), element_ref(e, r) + ": file ends inside property '" +
-                                             prop +
-                                             "' (truncated; header counts larger than the data?)");
-  unsigned char b[8];
-  std::memcpy(b, data_.data() + pos_, n);
-  if ((header_.format == Format::kBinaryLE) != little_host_)
-    for (std::size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
-  switch (t) {
-    case PlyType::kInt8: {
-      std::int8_t x;
-      std::memcpy(&x, b, 1);
-      v.i = x;
+  // Binary: read_value comes here only when fewer than the value's bytes are left.
+  assert(data_.size() - pos_ < type_size(t));
+  fail("byte " + std::to_string(pos_), element_ref(e, r) + ": file ends inside property '" + prop +
+                                           "' (truncated; header counts larger than the data?)");
+}
+
+void PlyParser::store_vertex_value(const Property& p, std::size_t i, double d) {
+  switch (p.target) {
+    case Target::kX:
+      positions_[i].x = d;
       break;
-    }
-    case PlyType::kUint8:
-      v.i = b[0];
+    case Target::kY:
+      positions_[i].y = d;
       break;
-    case PlyType::kInt16: {
-      std::int16_t x;
-      std::memcpy(&x, b, 2);
-      v.i = x;
+    case Target::kZ:
+      positions_[i].z = d;
       break;
-    }
-    case PlyType::kUint16: {
-      std::uint16_t x;
-      std::memcpy(&x, b, 2);
-      v.i = x;
+    case Target::kNormal:
+      vertex_out_[normal_out_].values[3 * i + p.index] = d;
       break;
-    }
-    case PlyType::kInt32: {
-      std::int32_t x;
-      std::memcpy(&x, b, 4);
-      v.i = x;
+    case Target::kColor:
+      vertex_out_[color_out_].values[3 * i + p.index] = d / vertex_out_[color_out_].scale;
       break;
-    }
-    case PlyType::kUint32: {
-      std::uint32_t x;
-      std::memcpy(&x, b, 4);
-      v.i = x;
+    case Target::kAlpha:
+      vertex_out_[alpha_out_].values[i] = d / vertex_out_[alpha_out_].scale;
       break;
-    }
-    case PlyType::kFloat32: {
-      float x;
-      std::memcpy(&x, b, 4);
-      v.d = x;
+    case Target::kTexCoord:
+      vertex_out_[uv_out_].values[2 * i + p.index] = d;
       break;
-    }
-    case PlyType::kFloat64: {
-      double x;
-      std::memcpy(&x, b, 8);
-      v.d = x;
+    case Target::kScalar:
+      vertex_out_[p.index].values[i] = d;
       break;
-    }
+    default:
+      break;
   }
-  if (!is_float(t)) v.d = static_cast<double>(v.i);
-  pos_ += n;
-  return v;
+}
+
+std::uint64_t PlyParser::read_binary_records(const Element& e, bool is_vertex, bool is_face) {
+  const char* const data = data_.data();
+  const std::size_t size = data_.size();
+  if (is_vertex) {
+    for (const Property& p : e.props)
+      if (p.is_list) return 0;
+    const std::uint64_t record = min_record_size(e, header_.format);  // fixed: no lists
+    const std::uint64_t whole = std::min<std::uint64_t>(e.count, (size - pos_) / record);
+    for (std::uint64_t r = 0; r < whole; ++r, pos_ += record) {
+      std::size_t at = pos_;
+      for (const Property& p : e.props) {
+        const double d = decode_binary(p.type, data + at, swap_).d;
+        at += type_size(p.type);
+        if (p.target == Target::kSkip) continue;
+        if (!std::isfinite(d)) return r;  // the generic loop reports it
+        store_vertex_value(p, static_cast<std::size_t>(r), d);
+      }
+    }
+    return whole;
+  }
+  if (!is_face || e.props.size() != 1 || e.props[0].target != Target::kIndices) return 0;
+  const Property& p = e.props[0];
+  // The common layouts with the types fixed at compile time; any other through decode_binary.
+  if (!swap_ && p.count_type == PlyType::kUint8 && p.type == PlyType::kInt32)
+    return read_index_lists(
+        e, [](const char* at) { return load_binary<std::uint8_t>(at, false); },
+        [](const char* at) { return load_binary<std::int32_t>(at, false); });
+  if (!swap_ && p.count_type == PlyType::kUint8 && p.type == PlyType::kUint32)
+    return read_index_lists(
+        e, [](const char* at) { return load_binary<std::uint8_t>(at, false); },
+        [](const char* at) { return load_binary<std::uint32_t>(at, false); });
+  return read_index_lists(
+      e, [&](const char* at) { return decode_binary(p.count_type, at, swap_).i; },
+      [&](const char* at) { return decode_binary(p.type, at, swap_).i; });
+}
+
+template <class CountAt, class ItemAt>
+std::uint64_t PlyParser::read_index_lists(const Element& e, CountAt count_at, ItemAt item_at) {
+  const Property& p = e.props[0];
+  const char* const data = data_.data();
+  const std::size_t size = data_.size();
+  const std::size_t count_size = type_size(p.count_type), item_size = type_size(p.type);
+  for (std::uint64_t r = 0; r < e.count; ++r) {
+    if (size - pos_ < count_size) return r;
+    const auto n = static_cast<std::int64_t>(count_at(data + pos_));
+    if (n < 3 || static_cast<std::uint64_t>(n) > (size - pos_ - count_size) / item_size) return r;
+    const char* items = data + pos_ + count_size;
+    for (std::int64_t k = 0; k < n; ++k, items += item_size) {
+      const auto v = static_cast<std::int64_t>(item_at(items));
+      if (v < 0 || static_cast<std::uint64_t>(v) >= vertex_count_) {
+        corners_.resize(first_.back());  // this record again, by the generic loop
+        return r;
+      }
+      corners_.push_back(static_cast<std::uint32_t>(v));
+    }
+    pos_ = static_cast<std::size_t>(items - data);
+    first_.push_back(corners_.size());
+  }
+  return e.count;
 }
 
 void PlyParser::read_element(Element& e) {
@@ -539,7 +649,9 @@ void PlyParser::read_element(Element& e) {
     for (ScalarOut& o : face_out_) o.values.reserve(e.count * static_cast<std::size_t>(o.dim));
   }
   std::vector<double> uv_record;
-  for (std::uint64_t r = 0; r < e.count; ++r) {
+  const std::uint64_t fast =
+      header_.format != Format::kAscii ? read_binary_records(e, is_vertex, is_face) : 0;
+  for (std::uint64_t r = fast; r < e.count; ++r) {
     begin_record(e, r);
     std::size_t corners_before = corners_.size();
     bool saw_uv = false;
@@ -582,34 +694,7 @@ void PlyParser::read_element(Element& e) {
                               std::to_string(v.d) + ")");
       const std::size_t i = static_cast<std::size_t>(r);
       if (is_vertex) {
-        switch (p.target) {
-          case Target::kX:
-            positions_[i].x = v.d;
-            break;
-          case Target::kY:
-            positions_[i].y = v.d;
-            break;
-          case Target::kZ:
-            positions_[i].z = v.d;
-            break;
-          case Target::kNormal:
-            vertex_out_[normal_out_].values[3 * i + p.index] = v.d;
-            break;
-          case Target::kColor:
-            vertex_out_[color_out_].values[3 * i + p.index] = v.d / vertex_out_[color_out_].scale;
-            break;
-          case Target::kAlpha:
-            vertex_out_[alpha_out_].values[i] = v.d / vertex_out_[alpha_out_].scale;
-            break;
-          case Target::kTexCoord:
-            vertex_out_[uv_out_].values[2 * i + p.index] = v.d;
-            break;
-          case Target::kScalar:
-            vertex_out_[p.index].values[i] = v.d;
-            break;
-          default:
-            break;
-        }
+        store_vertex_value(p, i, v.d);
       } else if (is_face) {
         ScalarOut& o = face_out_[p.target == Target::kColor   ? face_color_out_
                                  : p.target == Target::kAlpha ? face_alpha_out_
@@ -665,6 +750,7 @@ TriMesh PlyParser::parse() {
   little_host_ = first_byte == 1;
 
   parse_header();
+  swap_ = header_.format != Format::kAscii && (header_.format == Format::kBinaryLE) != little_host_;
   for (Element& e : header_.elements) {
     if (e.name == "vertex") {
       if (e.count > std::numeric_limits<std::uint32_t>::max() - 1ull)

@@ -242,6 +242,77 @@ TEST(ReadPly, MalformedInputs) {
       "255 items runs past the end");
 }
 
+// Binary files are read by a fast loop for the usual layouts (scalar vertex properties; faces of
+// one index list) that hands a malformed record to the generic loop: the mesh must equal the
+// ascii twin's (read by the generic loop alone), and a bad record after good ones must give the
+// generic loop's message at the same byte.
+TEST(ReadPly, BinaryFastPathAgreesWithTheGenericLoop) {
+  std::string dir = scratch_dir("ply_fast");
+  const std::string ascii_body =
+      "0 0 0 0.5\n1 0 0 -2\n1 1 0 3.25\n0 1 0 1e-30\n3 0 1 2\n4 0 1 2 3\n3 3 2 1\n";
+  const std::string props = std::string(kXyz) + "property double q\n";
+  std::string vertices;
+  const double q[4] = {0.5, -2, 3.25, 1e-30};
+  const float xy[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int v = 0; v < 4; ++v) put(vertices, xy[v][0]), put(vertices, xy[v][1]), put(vertices, 0.f);
+  auto vertices_with_q = [&](double q1) {
+    std::string b;
+    for (int v = 0; v < 4; ++v) {
+      put(b, xy[v][0]), put(b, xy[v][1]), put(b, 0.f);
+      put(b, v == 1 ? q1 : q[v]);
+    }
+    return b;
+  };
+  // Faces {0 1 2}, {0 1 2 3}, then `last` (count first), as uchar + int or uchar + uint.
+  auto faces = [](const std::vector<std::int64_t>& last, bool unsigned_items) {
+    std::string b;
+    for (const std::vector<std::int64_t>& f :
+         {std::vector<std::int64_t>{0, 1, 2}, std::vector<std::int64_t>{0, 1, 2, 3}, last}) {
+      put(b, static_cast<std::uint8_t>(f.size()));
+      for (std::int64_t i : f)
+        unsigned_items ? put(b, static_cast<std::uint32_t>(i))
+                       : put(b, static_cast<std::int32_t>(i));
+    }
+    return b;
+  };
+  const TriMesh twin =
+      read_mesh(write_file(dir, "a.ply", header("ascii", props, 4, kIdx, 3) + ascii_body));
+  for (bool unsigned_items : {false, true}) {
+    const std::string idx = unsigned_items ? "property list uchar uint vertex_indices\n" : kIdx;
+    const std::string h = header("binary_little_endian", props, 4, idx, 3);
+    const TriMesh m = read_mesh(
+        write_file(dir, "b.ply", h + vertices_with_q(-2) + faces({3, 2, 1}, unsigned_items)));
+    ASSERT_EQ(m.num_vertices(), twin.num_vertices());
+    for (std::size_t v = 0; v < 4; ++v) EXPECT_EQ(m.positions[v], twin.positions[v]);
+    EXPECT_EQ(m.faces, twin.faces);
+    EXPECT_EQ(m.source_polygons, 3u);
+    EXPECT_EQ(m.channel("q")->values, twin.channel("q")->values);
+
+    // Face 2 is bad, after two good faces: the generic loop's message, at the generic loop's byte
+    // (just after the value that is wrong).
+    const std::size_t faces_at = h.size() + 4 * (12 + 8);
+    const std::string bad_index = h + vertices_with_q(-2) + faces({3, 2, 4}, unsigned_items);
+    expect_parse_error(write_file(dir, "i.ply", bad_index),
+                       "byte " + std::to_string(faces_at + 13 + 17 + 1 + 12) +
+                           ": face 2: vertex index 4 out of range (4 vertices)");
+    expect_parse_error(
+        write_file(dir, "n.ply", h + vertices_with_q(-2) + faces({3, 2}, unsigned_items)),
+        "byte " + std::to_string(faces_at + 13 + 17 + 1) + ": face 2: 2 corners");
+    std::string cut = h + vertices_with_q(-2) + faces({3, 2, 1}, unsigned_items);
+    cut.resize(cut.size() - 2);
+    expect_parse_error(write_file(dir, "t.ply", cut), "face 2: list 'vertex_indices' of 3 items");
+  }
+  const std::string h = header("binary_little_endian", props, 4, kIdx, 3);
+  expect_parse_error(
+      write_file(
+          dir, "nan.ply",
+          h + vertices_with_q(std::numeric_limits<double>::infinity()) + faces({3, 2, 1}, false)),
+      "byte " + std::to_string(h.size() + 20 + 20) + ": vertex 1: property 'q' is not finite");
+  std::string short_vertices = h + vertices_with_q(-2);
+  short_vertices.resize(h.size() + 3 * 20 + 10);
+  expect_parse_error(write_file(dir, "sv.ply", short_vertices), "declares 4 records");
+}
+
 TEST(ReadPlyReal, StanfordBunnyWithScannerScalars) {
   std::string data = shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
