@@ -17,14 +17,12 @@
 // samples 1 when alone.
 #include <array>
 #include <cstdint>
-#include <memory>
-#include <new>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "metric/mesh.h"
 #include "metric/nearest_point.h"
+#include "metric/raw_storage_allocator.h"
 
 namespace meshdev {
 
@@ -58,27 +56,12 @@ struct Sample {
   SampleKind kind = SampleKind::kVertex;
 };
 
-// The allocator of SampleSet::samples: like std::allocator, except that construction without
-// arguments does nothing, so `resize` leaves the new elements as raw storage. The face samplers
-// resize once and then place every sample (placement new) on the threads that compute them,
-// instead of value-initialising 72 bytes per sample on one thread first. push_back, insert and
-// copies construct as usual. Nothing may read an element that `resize` added before it is placed.
+// The storage of SampleSet::samples (metric/raw_storage_allocator.h): the face samplers resize
+// once and then place every sample (placement new) on the threads that compute them, instead of
+// value-initialising 72 bytes per sample on one thread first. Nothing may read an element that
+// `resize` added before it is placed.
 template <class T>
-struct SampleAllocator : std::allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = SampleAllocator<U>;
-  };
-  SampleAllocator() = default;
-  template <class U>
-  SampleAllocator(const SampleAllocator<U>&) noexcept {}
-  template <class U>
-  void construct(U*) noexcept {}
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
+using SampleAllocator = RawStorageAllocator<T>;
 using SampleVector = std::vector<Sample, SampleAllocator<Sample>>;
 
 struct SampleSet {

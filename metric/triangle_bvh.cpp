@@ -478,7 +478,7 @@ void TriangleBvh::build(int threads) {
 
   // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
   const auto leaf_count = static_cast<std::int64_t>(leaf_nodes.size());
-  leaves_.resize(leaf_nodes.size());
+  leaves_.resize(leaf_nodes.size());  // raw storage: each block is written in full below
   std::vector<double> leaf_size(leaf_nodes.size());  // sum of the faces' longest edges
   double corner_error2 = 0.0;                        // square roots are taken once, of the maxima
 #pragma omp parallel for num_threads(team) schedule(static) reduction(max : corner_error2)

@@ -44,6 +44,7 @@
 
 #include "metric/nearest_point.h"
 #include "metric/plane_bounds.h"
+#include "metric/raw_storage_allocator.h"
 
 namespace meshdev {
 
@@ -163,7 +164,7 @@ class TriangleBvh final : public NearestPointIndex {
   double block_packet_extent_ = 0;  // the same for block packets
   std::uint32_t root_ = 0;          // child ref of the root
   std::vector<Node> nodes_;
-  std::vector<Leaf> leaves_;
+  std::vector<Leaf, RawStorageAllocator<Leaf>> leaves_;  // every field written by build()
   int depth_ = 0;
 };
 
