@@ -42,17 +42,29 @@ class OffParser {
     }
     return false;
   }
-  double number(std::string_view token, const std::string& what) const {
+  // What a value belongs to in an error message ("vertex 12", "face 3 index"): made into a string
+  // only when a message is, not once per record.
+  struct Where {
+    static constexpr std::uint64_t kNone = ~std::uint64_t{0};
+    const char* element;
+    std::uint64_t index = kNone;  // kNone: not a record's value (the header's counts)
+    const char* detail = "";
+    std::string str() const {
+      return element + (index == kNone ? std::string() : " " + std::to_string(index)) + detail;
+    }
+  };
+  double number(std::string_view token, const Where& what) const {
     double value = 0;
     NumberStatus s = io_detail::parse_double(token, value);
-    if (s != NumberStatus::kOk) fail(what + ": " + io_detail::describe_bad_number(token, s));
+    if (s != NumberStatus::kOk) fail(what.str() + ": " + io_detail::describe_bad_number(token, s));
     return value;
   }
-  std::int64_t integer(std::string_view token, const std::string& what) const {
+  std::int64_t integer(std::string_view token, const Where& what) const {
     std::int64_t value = 0;
     NumberStatus s = io_detail::parse_int(token, value);
-    if (s == NumberStatus::kNotNumber) fail(what + ": " + quoted(token) + " is not an integer");
-    if (s != NumberStatus::kOk) fail(what + ": " + quoted(token) + " is out of range");
+    if (s == NumberStatus::kNotNumber)
+      fail(what.str() + ": " + quoted(token) + " is not an integer");
+    if (s != NumberStatus::kOk) fail(what.str() + ": " + quoted(token) + " is out of range");
     return value;
   }
 
@@ -84,7 +96,7 @@ TriMesh OffParser::parse() {
     int n = 0;
     while (c.next(tok)) {
       if (n == 3) fail("too many values on the counts line (expected 'V F E')");
-      counts[n++] = integer(tok, "count");
+      counts[n++] = integer(tok, {"count"});
     }
     if (n < 2) fail("counts line needs the vertex and face counts ('V F E')");
   }
@@ -115,19 +127,20 @@ TriMesh OffParser::parse() {
     int n = 0;
     Tokens vt(line);
     while (n < 16 && vt.next(tok[n])) ++n;
-    const std::string where = "vertex " + std::to_string(v);
+    const Where where{"vertex", v};
     int cdim = n - fixed;
     if (kind.color) {
       if (cdim != 3 && cdim != 4)
-        fail(where + ": expected " + std::to_string(fixed + 3) + " or " +
+        fail(where.str() + ": expected " + std::to_string(fixed + 3) + " or " +
              std::to_string(fixed + 4) + " values (with RGB[A] colour), found " +
              std::to_string(n));
       if (color_dim < 0) color_dim = cdim;
       if (cdim != color_dim)
-        fail(where + ": colour has " + std::to_string(cdim) + " components, earlier vertices " +
-             std::to_string(color_dim));
+        fail(where.str() + ": colour has " + std::to_string(cdim) +
+             " components, earlier vertices " + std::to_string(color_dim));
     } else if (n != fixed) {
-      fail(where + ": expected " + std::to_string(fixed) + " values, found " + std::to_string(n));
+      fail(where.str() + ": expected " + std::to_string(fixed) + " values, found " +
+           std::to_string(n));
     }
     int i = 0;
     Vec3 p;
@@ -140,7 +153,7 @@ TriMesh OffParser::parse() {
         std::string_view c = tok[i];
         float_colors = float_colors || c.find_first_of(".eE") != std::string_view::npos;
         double value = number(c, where);
-        if (value < 0) fail(where + ": negative colour value " + quoted(c));
+        if (value < 0) fail(where.str() + ": negative colour value " + quoted(c));
         (k < 3 ? colors : alphas).push_back(value);
       }
     }
@@ -153,20 +166,20 @@ TriMesh OffParser::parse() {
   for (std::uint64_t f = 0; f < nf; ++f) {
     if (!next_content_line(line))
       fail("file ends after " + std::to_string(f) + " of " + std::to_string(nf) + " faces");
-    const std::string where = "face " + std::to_string(f);
+    const Where where{"face", f};
     Tokens ft(line);
     std::string_view tok;
     ft.next(tok);
-    std::int64_t n = integer(tok, where + " corner count");
-    if (n < 3) fail(where + ": " + std::to_string(n) + " corners (at least 3 needed)");
+    std::int64_t n = integer(tok, {"face", f, " corner count"});
+    if (n < 3) fail(where.str() + ": " + std::to_string(n) + " corners (at least 3 needed)");
     poly.clear();
     for (std::int64_t k = 0; k < n; ++k) {
       if (!ft.next(tok))
-        fail(where + ": declares " + std::to_string(n) + " corners but the line has " +
+        fail(where.str() + ": declares " + std::to_string(n) + " corners but the line has " +
              std::to_string(k) + " indices");
-      std::int64_t idx = integer(tok, where + " index");
+      std::int64_t idx = integer(tok, {"face", f, " index"});
       if (idx < 0 || static_cast<std::uint64_t>(idx) >= nv)
-        fail(where + ": vertex index " + std::to_string(idx) + " out of range (" +
+        fail(where.str() + ": vertex index " + std::to_string(idx) + " out of range (" +
              std::to_string(nv) + " vertices)");
       poly.push_back(static_cast<std::uint32_t>(idx));
     }
@@ -174,10 +187,10 @@ TriMesh OffParser::parse() {
     int extra = 0;
     while (ft.next(tok)) {
       ++extra;
-      number(tok, where + " colour");
+      number(tok, {"face", f, " colour"});
     }
     if (extra == 2 || extra > 4)
-      fail(where + ": " + std::to_string(extra) + " values after the " + std::to_string(n) +
+      fail(where.str() + ": " + std::to_string(extra) + " values after the " + std::to_string(n) +
            " indices (expected none, a colour index or an RGB[A] colour)");
     for (std::size_t c = 1; c + 1 < poly.size(); ++c)
       mesh.faces.push_back({poly[0], poly[c], poly[c + 1]});

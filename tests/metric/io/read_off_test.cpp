@@ -75,6 +75,15 @@ TEST(ReadOff, MalformedInputs) {
   expect_parse_error(write_file(dir, "val.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n1000000 0 1 2\n"),
                      "declares 1000000 corners");
   expect_parse_error(write_file(dir, "kw.off", "3 1 0\n" + tri), "expected an OFF keyword");
+  // Each bad token is named by what it should have been.
+  const std::string three = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+  expect_parse_error(write_file(dir, "cnt.off", "OFF\n3 x 0\n"), "count: 'x' is not an integer");
+  expect_parse_error(write_file(dir, "cc.off", three + "q 0 1 2\n"),
+                     "line 6: face 0 corner count: 'q' is not an integer");
+  expect_parse_error(write_file(dir, "ix.off", three + "3 0 1 2.5\n"),
+                     "line 6: face 0 index: '2.5' is not an integer");
+  expect_parse_error(write_file(dir, "col.off", three + "3 0 1 2 1 zz 1\n"),
+                     "line 6: face 0 colour: 'zz' is not a number");
 }
 
 TEST(ReadOffReal, DinoAndElephant) {
