@@ -85,7 +85,14 @@ class QuantileBins {
         below[q] = cum;
       }
     }
-    // The values (and weights) of the quantiles' bins, one pass.
+    if (weights == nullptr) {
+      select_in_bins(values, bin, rank, outs);
+      return;
+    }
+    // The values and weights of the quantiles' bins, one pass; the values equal to the minimum
+    // lo_ (all in bin 0; often most of the sample, the exact zeros of coplanar parts) are not
+    // kept, only their weight summed (compensated, in sample order: it can differ from their sum
+    // in sorted order by an ulp, as the bins' sums can).
     std::vector<int> slot(static_cast<std::size_t>(bins_), -1);
     std::vector<std::vector<std::pair<double, double>>> held;
     for (int q = 0; q < 4; ++q)
@@ -93,23 +100,33 @@ class QuantileBins {
         slot[bin[q]] = static_cast<int>(held.size());
         held.emplace_back();
       }
+    CompensatedSum at_lo;
     for (std::size_t i = 0; i < n_; ++i) {
-      const int k = slot[bin_of(values[i])];
-      if (k >= 0) held[k].push_back({values[i], weights != nullptr ? weights[i] : 1.0});
+      const double v = values[i];
+      const int k = slot[bin_of(v)];
+      if (k < 0) continue;
+      if (v == lo_)
+        at_lo.add(weights[i]);
+      else
+        held[k].push_back({v, weights[i]});
     }
+    std::vector<bool> sorted(held.size(), false);
     for (int q = 0; q < 4; ++q) {
-      std::vector<std::pair<double, double>>& h = held[slot[bin[q]]];
-      assert(!h.empty());
-      if (weights == nullptr) {
-        std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(rank[q]), h.end());
-        *outs[q] = h[rank[q]].first;
-        continue;
-      }
-      // Sorting (value, weight) pairs: equal values give the same quantile in any order, so an
-      // unstable sort is deterministic here.
-      std::sort(h.begin(), h.end());
       const double target = qs[q] * total;
       CompensatedSum cum = below[q];
+      std::vector<std::pair<double, double>>& h = held[slot[bin[q]]];
+      if (bin[q] == 0) {
+        cum.add(at_lo.value());
+        if (cum.value() >= target || h.empty()) {
+          *outs[q] = lo_;  // (empty: the bin's sum reached the target; its values round short)
+          continue;
+        }
+      }
+      assert(!h.empty());
+      // Sorting (value, weight) pairs: equal values give the same quantile in any order, so an
+      // unstable sort is deterministic here.
+      if (!sorted[slot[bin[q]]]) std::sort(h.begin(), h.end());
+      sorted[slot[bin[q]]] = true;
       *outs[q] = h.back().first;  // the bin's sum reached the target; its elements may round short
       for (const auto& [value, weight] : h) {
         cum.add(weight);
@@ -122,6 +139,42 @@ class QuantileBins {
   }
 
  private:
+  // Unweighted: the value of rank rank[q] in bin bin[q], for each q. One pass gathers the values
+  // of those bins, except the minimum lo_, which is only counted: bin 0 often holds most of the
+  // sample and most of it at the minimum (the exact zeros of coplanar parts), and a rank below
+  // that count is the minimum itself. Then a selection per bin among the rest.
+  void select_in_bins(const std::vector<double>& values, const int bin[4],
+                      const std::size_t rank[4], double* outs[4]) const {
+    std::vector<int> slot(static_cast<std::size_t>(bins_), -1);
+    std::vector<std::vector<double>> held;
+    for (int q = 0; q < 4; ++q)
+      if (slot[bin[q]] < 0) {
+        slot[bin[q]] = static_cast<int>(held.size());
+        held.emplace_back().reserve(count_[bin[q]]);
+      }
+    std::size_t at_lo = 0;
+    for (std::size_t i = 0; i < n_; ++i) {
+      const double v = values[i];
+      const int k = slot[bin_of(v)];
+      if (k < 0) continue;
+      if (v == lo_)
+        ++at_lo;  // only in bin 0
+      else
+        held[k].push_back(v);
+    }
+    for (int q = 0; q < 4; ++q) {
+      if (bin[q] == 0 && rank[q] < at_lo) {
+        *outs[q] = lo_;
+        continue;
+      }
+      const std::size_t r = bin[q] == 0 ? rank[q] - at_lo : rank[q];
+      std::vector<double>& h = held[slot[bin[q]]];
+      assert(r < h.size());
+      std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(r), h.end());
+      *outs[q] = h[r];
+    }
+  }
+
   std::size_t n_;
   double lo_, scale_ = 0.0;
   int bins_;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -91,6 +92,49 @@ TEST(Statistics, BinnedQuantilesEqualTheSortedTwin) {
               break;
             }
           EXPECT_EQ(got[q], want) << "n " << n << " shape " << shape << " weighted " << weighted
+                                  << " q " << qs[q];
+        }
+      }
+    }
+  }
+}
+
+// Samples where many values equal the minimum (the exact zeros of coplanar parts, here a
+// minimum of 0.25): quantiles below that share are the minimum without a selection, the others
+// are ranked past it. Counts of minimum values on both sides of each quantile's rank.
+TEST(Statistics, QuantilesOfSamplesMostlyAtTheirMinimum) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double qs[4] = {0.50, 0.90, 0.95, 0.99};
+  for (std::size_t n : {1000u, 100000u}) {
+    for (std::size_t at_min :
+         {n / 2 - 1, n / 2, n / 2 + 1, n * 9 / 10, n * 99 / 100 - 1, n * 99 / 100, n - 1, n}) {
+      std::vector<double> values(n), weights(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        values[i] = 0.25 + u(rng) * u(rng);  // above the minimum, denser near it
+        weights[i] = u(rng);
+      }
+      std::shuffle(values.begin(), values.end(), rng);
+      std::vector<std::size_t> order(n);
+      std::iota(order.begin(), order.end(), 0);
+      std::shuffle(order.begin(), order.end(), rng);
+      for (std::size_t i = 0; i < at_min; ++i) values[order[i]] = 0.25;
+      for (bool weighted : {false, true}) {
+        const Statistics s = compute_statistics(values, weighted ? weights : std::vector<double>{});
+        std::vector<std::pair<double, double>> sorted(n);
+        for (std::size_t i = 0; i < n; ++i) sorted[i] = {values[i], weighted ? weights[i] : 1.0};
+        std::sort(sorted.begin(), sorted.end());
+        double total = 0;
+        for (const auto& p : sorted) total += p.second;
+        const double got[4] = {s.p50, s.p90, s.p95, s.p99};
+        for (int q = 0; q < 4; ++q) {
+          double cum = 0, want = sorted.back().first;
+          for (const auto& p : sorted)
+            if ((cum += p.second) >= qs[q] * total) {
+              want = p.first;
+              break;
+            }
+          EXPECT_EQ(got[q], want) << "n " << n << " at_min " << at_min << " weighted " << weighted
                                   << " q " << qs[q];
         }
       }
