@@ -4,9 +4,9 @@
 usage: sweep_cli_test.py MESHDEV MAKE_MESHES SCRATCH
 
 1. An uninterrupted sweep (the reference).
-2. The same sweep killed with SIGKILL at random moments 20 times (seeded), resumed each time,
-   then run to completion: the CSV must equal the reference except for the timing columns, with
-   no row missing or duplicated. Kill times are random; the check does not depend on them.
+2. The same sweep killed with SIGKILL 20 times, each run once it has written a line, at a random
+   moment (seeded) within half a job's mean time; resumed each time, then run to completion: the CSV
+   must equal the reference except for the timing columns, with no row missing or duplicated.
 3. guard: identical CSVs exit 0; a degraded value, a missing row and a failed status exit 1
    with a table.
 4. --shard I/3 three times + merge equals the single run.
@@ -66,13 +66,29 @@ check(len(jobs) == 2 * 3 * 3, "reference has 18 jobs (got %d)" % len(jobs))
 check("sweep: [18/18]" in p.stderr, "plain log lines when stderr is not a terminal")
 
 # 2. Killed 20 times at random moments, resumed each time.
+def lines_on_disk(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read().count(b"\n")
+    except OSError:
+        return 0
+
+
 rng = random.Random(20240611)
 out = os.path.join(scratch, "killed")
+out_csv = os.path.join(out, "sweep.csv")
+job_time = duration / len(jobs) if jobs else 0.1
 kills = 0
 for i in range(20):
+    before = lines_on_disk(out_csv)
     proc = subprocess.Popen([meshdev, "sweep", config, "--out", out, "--no-progress", "-q"],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    time.sleep(rng.uniform(0.0, max(0.05, duration / 6)))
+    # Once this run has written a line, kill it at a random moment of half a job's mean time: each
+    # run makes progress and most are killed with work left, whatever the machine's speed.
+    deadline = time.monotonic() + 30 * max(duration, 1.0)
+    while proc.poll() is None and lines_on_disk(out_csv) == before and time.monotonic() < deadline:
+        time.sleep(0.002)
+    time.sleep(rng.uniform(0.0, job_time / 2))
     if proc.poll() is None:
         proc.send_signal(signal.SIGKILL)
         kills += 1
