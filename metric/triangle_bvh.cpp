@@ -1140,7 +1140,13 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
       }
       simd::store(dist + b, box_sq_distances_f4(blo, bhi, s.pf));
     }
-    for (;;) {
+    // `remaining`: the blocks not searched yet. A searched block's distance becomes +inf, so a
+    // finite least distance is always a remaining block's; where the least is +inf (blocks too
+    // far for float, with no finite radius yet) a remaining block is taken from the mask, never
+    // a searched one or a padding lane (fuzz_nearest_point found the loop re-searching those).
+    static_assert(kMaxBlocks <= 64, "one bit per block");
+    std::uint64_t remaining = blocks == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << blocks) - 1;
+    while (remaining != 0) {
       F4 lowest = F4::load(dist);
       for (std::size_t b = 4; b < padded; b += 4) lowest = min(lowest, F4::load(dist + b));
       float lanes[4];
@@ -1148,14 +1154,20 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
       const float least = std::min(std::min(lanes[0], lanes[1]), std::min(lanes[2], lanes[3]));
       if (!(least <= s.box_limit2)) break;
       std::size_t at = 0;
-      const F4 wanted = F4::splat(least);
-      for (;; at += 4) {
-        const int hit = equal_mask(F4::load(dist + at), wanted);
-        if (hit != 0) {
-          at += static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(hit)));
-          break;
+      if (least == kInf) {
+        at = static_cast<std::size_t>(__builtin_ctzll(remaining));
+      } else {
+        const F4 wanted = F4::splat(least);
+        for (;; at += 4) {
+          const int hit = equal_mask(F4::load(dist + at), wanted);
+          if (hit != 0) {
+            at += static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(hit)));
+            break;
+          }
         }
       }
+      assert(at < blocks && (remaining >> at & 1) != 0);
+      remaining &= ~(std::uint64_t{1} << at);
       dist[at] = kInf;
       search_leaf(leaves_[scratch.block[at]], s);
     }

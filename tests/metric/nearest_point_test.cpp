@@ -484,6 +484,58 @@ std::size_t batch_packets_checked(const TriMesh& m, const std::vector<Vec3>& poi
 // check reach 1e-14 x 1e100 (FaceEvaluator), so a query with a source hint has a reach whose
 // square overflows float: nothing can be culled, and the packet's padding lanes (a block of 4
 // holding one face) passed the cut and were read as faces (heap overflow under ASan).
+// fuzz_nearest_point's finding (regressions/fuzz_nearest_point/block_packet_infinite_reach): a
+// mesh 1e100 wide whose other corners collapse to a point in the float frame, many degenerate
+// faces, queries in runs of 10 (steps of 1e-4 of the diagonal). A block packet's loop kept
+// taking blocks it had searched (their distance set to +inf) while its radius was still +inf,
+// and never ended; every block is now searched at most once.
+TEST(NearestPoint, BvhBlockPacketSearchesEachBlockOnce) {
+  TriMesh m;
+  m.positions = {
+      {-0.9375, -0.125, 7.1875}, {1e100, 4.6875, -5.0625},    {0.500000000001, -7.4375, -7.5},
+      {-7.5, -7.5, 1.6875},      {-6.0625, -1.1875, -5.0625}, {-2.8125, 3.0625, 0.625},
+      {-4.4375, 2.1875, -3.25},  {-2.8125, -7.125, 1e6},      {-5.5625, 1e15, 1.0625}};
+  m.faces = {{3, 7, 4}, {2, 3, 0}};
+  for (int i = 0; i < 17; ++i) m.faces.push_back({0, 0, 0});
+  std::vector<Vec3> queries = m.positions;
+  for (const Vec3& q : std::vector<Vec3>{{7.375, 7.375, -3.75},
+                                         {-1.125, 2.4375, 2.0 / 3},
+                                         {2.0 / 3, 2.0 / 3, 2.0 / 3},
+                                         {2.0 / 3, 2.0 / 3, -7.5},
+                                         {-0.375, 4.875, -0.8125},
+                                         {-5.125, -4.625, -0.8125},
+                                         {-3, 0.875, 4},
+                                         {-3.3125, 1.4375, -4.25},
+                                         {4.125, 0.375, 0.1},
+                                         {1e15, 5.0625, -6.75},
+                                         {-2.4375, -7.4375, 1.0 / 3},
+                                         {-3.875, 5.4375, 2.125},
+                                         {-3.6875, 3.5, -3},
+                                         {4.5, 5.8125, 2.5625},
+                                         {3.0625, -7.5, 2.875},
+                                         {7.3125, 5.1875, 0.3125},
+                                         {0.1875, 1.5, 3e-8},
+                                         {0, 0.625, 1e15},
+                                         {-1e15, 0, -7.5}})
+    queries.push_back(q);
+  // As the fuzz target: every third run of 10 has its face as source triangle (the exact-zero
+  // rule's hint, whose check reach is a floor of the search radius).
+  const double step = 1e-4 * bounding_box(m).diagonal();
+  std::vector<Vec3> points, corners;
+  for (std::size_t q = 0; q < queries.size(); ++q)
+    for (int j = 0; j < 10; ++j) {
+      points.push_back(queries[q] + (j * step) * Vec3{1.0, -1.0, 0.5});
+      for (int c = 0; c < 3; ++c) corners.push_back(m.positions[m.faces[q % m.num_faces()][c]]);
+    }
+  std::vector<QueryHint> hints(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((i / 10) % 3 == 1) {
+      hints[i].source = &corners[3 * i];
+      hints[i].source_bary = {1, 0, 0};
+    }
+  batch_packets_checked(m, points, hints.data());
+}
+
 TEST(NearestPoint, BvhBatchNeverTakesPaddingLanesForFaces) {
   TriMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1e100, 0, 0}};
