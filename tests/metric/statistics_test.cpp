@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -58,6 +59,31 @@ TEST(Statistics, EqualWeightQuantilesAreTheOrderStatisticsOfTheDefinition) {
   }
 }
 
+// The sorted twin of the quantiles: all (value, weight) pairs sorted (weights all 1 when `weights`
+// is empty), weights summed in that order; p50, p90, p95, p99 are the first values whose
+// cumulative weight reaches q of the total.
+std::array<double, 4> sorted_twin_quantiles(const std::vector<double>& values,
+                                            const std::vector<double>& weights) {
+  const std::size_t n = values.size();
+  std::vector<std::pair<double, double>> sorted(n);
+  for (std::size_t i = 0; i < n; ++i) sorted[i] = {values[i], weights.empty() ? 1.0 : weights[i]};
+  std::sort(sorted.begin(), sorted.end());
+  double total = 0;
+  for (const auto& p : sorted) total += p.second;
+  const double qs[4] = {0.50, 0.90, 0.95, 0.99};
+  std::array<double, 4> want;
+  for (int q = 0; q < 4; ++q) {
+    double cum = 0;
+    want[q] = sorted.back().first;
+    for (const auto& p : sorted)
+      if ((cum += p.second) >= qs[q] * total) {
+        want[q] = p.first;
+        break;
+      }
+  }
+  return want;
+}
+
 // Quantiles are found bin by bin (a histogram pass, then selection or a sort inside the
 // quantile's bin). The twin: all (value, weight) pairs sorted, weights summed in that order.
 // Samples of up to 200k values (up to 12,500 bins), skewed, with many zeros and equal values,
@@ -66,7 +92,6 @@ TEST(Statistics, BinnedQuantilesEqualTheSortedTwin) {
   std::mt19937_64 rng(11);
   std::exponential_distribution<double> e(3.0);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const double qs[4] = {0.50, 0.90, 0.95, 0.99};
   for (std::size_t n : {50u, 1000u, 20000u, 200000u}) {
     for (int shape = 0; shape < 3; ++shape) {
       std::vector<double> values(n), weights(n);
@@ -77,23 +102,13 @@ TEST(Statistics, BinnedQuantilesEqualTheSortedTwin) {
       }
       if (shape == 2) values[n / 3] = 1e9;  // an outlier
       for (bool weighted : {false, true}) {
-        const Statistics s = compute_statistics(values, weighted ? weights : std::vector<double>{});
-        std::vector<std::pair<double, double>> sorted(n);
-        for (std::size_t i = 0; i < n; ++i) sorted[i] = {values[i], weighted ? weights[i] : 1.0};
-        std::sort(sorted.begin(), sorted.end());
-        double total = 0;
-        for (const auto& p : sorted) total += p.second;
+        const std::vector<double> w = weighted ? weights : std::vector<double>{};
+        const Statistics s = compute_statistics(values, w);
         const double got[4] = {s.p50, s.p90, s.p95, s.p99};
-        for (int q = 0; q < 4; ++q) {
-          double cum = 0, want = sorted.back().first;
-          for (const auto& p : sorted)
-            if ((cum += p.second) >= qs[q] * total) {
-              want = p.first;
-              break;
-            }
-          EXPECT_EQ(got[q], want) << "n " << n << " shape " << shape << " weighted " << weighted
-                                  << " q " << qs[q];
-        }
+        const std::array<double, 4> want = sorted_twin_quantiles(values, w);
+        for (int q = 0; q < 4; ++q)
+          EXPECT_EQ(got[q], want[q])
+              << "n " << n << " shape " << shape << " weighted " << weighted << " q " << q;
       }
     }
   }
@@ -105,7 +120,6 @@ TEST(Statistics, BinnedQuantilesEqualTheSortedTwin) {
 TEST(Statistics, QuantilesOfSamplesMostlyAtTheirMinimum) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const double qs[4] = {0.50, 0.90, 0.95, 0.99};
   for (std::size_t n : {1000u, 100000u}) {
     for (std::size_t at_min :
          {n / 2 - 1, n / 2, n / 2 + 1, n * 9 / 10, n * 99 / 100 - 1, n * 99 / 100, n - 1, n}) {
@@ -120,23 +134,13 @@ TEST(Statistics, QuantilesOfSamplesMostlyAtTheirMinimum) {
       std::shuffle(order.begin(), order.end(), rng);
       for (std::size_t i = 0; i < at_min; ++i) values[order[i]] = 0.25;
       for (bool weighted : {false, true}) {
-        const Statistics s = compute_statistics(values, weighted ? weights : std::vector<double>{});
-        std::vector<std::pair<double, double>> sorted(n);
-        for (std::size_t i = 0; i < n; ++i) sorted[i] = {values[i], weighted ? weights[i] : 1.0};
-        std::sort(sorted.begin(), sorted.end());
-        double total = 0;
-        for (const auto& p : sorted) total += p.second;
+        const std::vector<double> w = weighted ? weights : std::vector<double>{};
+        const Statistics s = compute_statistics(values, w);
         const double got[4] = {s.p50, s.p90, s.p95, s.p99};
-        for (int q = 0; q < 4; ++q) {
-          double cum = 0, want = sorted.back().first;
-          for (const auto& p : sorted)
-            if ((cum += p.second) >= qs[q] * total) {
-              want = p.first;
-              break;
-            }
-          EXPECT_EQ(got[q], want) << "n " << n << " at_min " << at_min << " weighted " << weighted
-                                  << " q " << qs[q];
-        }
+        const std::array<double, 4> want = sorted_twin_quantiles(values, w);
+        for (int q = 0; q < 4; ++q)
+          EXPECT_EQ(got[q], want[q])
+              << "n " << n << " at_min " << at_min << " weighted " << weighted << " q " << q;
       }
     }
   }
