@@ -84,6 +84,21 @@ std::array<double, 4> sorted_twin_quantiles(const std::vector<double>& values,
   return want;
 }
 
+// compute_statistics' quantiles of `values`, with equal weights and then with `weights`, must be
+// the sorted twin's exactly.
+void expect_quantiles_are_the_sorted_twins(const std::vector<double>& values,
+                                           const std::vector<double>& weights,
+                                           const std::string& what) {
+  for (bool weighted : {false, true}) {
+    const std::vector<double> w = weighted ? weights : std::vector<double>{};
+    const Statistics s = compute_statistics(values, w);
+    const double got[4] = {s.p50, s.p90, s.p95, s.p99};
+    const std::array<double, 4> want = sorted_twin_quantiles(values, w);
+    for (int q = 0; q < 4; ++q)
+      EXPECT_EQ(got[q], want[q]) << what << " weighted " << weighted << " q " << q;
+  }
+}
+
 // Quantiles are found bin by bin (a histogram pass, then selection or a sort inside the
 // quantile's bin). The twin: all (value, weight) pairs sorted, weights summed in that order.
 // Samples of up to 200k values (up to 12,500 bins), skewed, with many zeros and equal values,
@@ -101,15 +116,8 @@ TEST(Statistics, BinnedQuantilesEqualTheSortedTwin) {
         weights[i] = r > 0.9 ? 0.0 : u(rng);
       }
       if (shape == 2) values[n / 3] = 1e9;  // an outlier
-      for (bool weighted : {false, true}) {
-        const std::vector<double> w = weighted ? weights : std::vector<double>{};
-        const Statistics s = compute_statistics(values, w);
-        const double got[4] = {s.p50, s.p90, s.p95, s.p99};
-        const std::array<double, 4> want = sorted_twin_quantiles(values, w);
-        for (int q = 0; q < 4; ++q)
-          EXPECT_EQ(got[q], want[q])
-              << "n " << n << " shape " << shape << " weighted " << weighted << " q " << q;
-      }
+      expect_quantiles_are_the_sorted_twins(
+          values, weights, "n " + std::to_string(n) + " shape " + std::to_string(shape));
     }
   }
 }
@@ -133,15 +141,8 @@ TEST(Statistics, QuantilesOfSamplesMostlyAtTheirMinimum) {
       std::iota(order.begin(), order.end(), 0);
       std::shuffle(order.begin(), order.end(), rng);
       for (std::size_t i = 0; i < at_min; ++i) values[order[i]] = 0.25;
-      for (bool weighted : {false, true}) {
-        const std::vector<double> w = weighted ? weights : std::vector<double>{};
-        const Statistics s = compute_statistics(values, w);
-        const double got[4] = {s.p50, s.p90, s.p95, s.p99};
-        const std::array<double, 4> want = sorted_twin_quantiles(values, w);
-        for (int q = 0; q < 4; ++q)
-          EXPECT_EQ(got[q], want[q])
-              << "n " << n << " at_min " << at_min << " weighted " << weighted << " q " << q;
-      }
+      expect_quantiles_are_the_sorted_twins(
+          values, weights, "n " + std::to_string(n) + " at_min " + std::to_string(at_min));
     }
   }
 }
