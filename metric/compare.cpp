@@ -59,16 +59,14 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
     return ties.front();
   };
 
+  const auto n = static_cast<std::int64_t>(samples.samples.size());
   std::vector<double> weights(samples.samples.size());
-  for (std::size_t i = 0; i < weights.size(); ++i) weights[i] = samples.samples[i].weight;
-  // One measure per thread (each is independent and computed serially, so the numbers do not
-  // depend on the thread count).
-  r.stats.resize(measures.size());
-  const auto measure_count = static_cast<std::int64_t>(measures.size());
 #pragma omp parallel for num_threads(o.threads > 0 ? o.threads : omp_get_max_threads()) \
-    schedule(dynamic, 1)
-  for (std::int64_t m = 0; m < measure_count; ++m)
-    r.stats[m] = compute_statistics(dev.values[m], weights, o.histogram_bins);
+    schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) weights[i] = samples.samples[i].weight;
+  // Each measure on the whole team (its numbers do not depend on the thread count).
+  for (std::size_t m = 0; m < measures.size(); ++m)
+    r.stats.push_back(compute_statistics(dev.values[m], weights, o.histogram_bins, o.threads));
   for (std::size_t m = 0; m < measures.size(); ++m) {
     const std::size_t i = r.stats[m].argmax;
     const Sample& s = samples.samples[i];

@@ -1,8 +1,11 @@
 #include "metric/statistics.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 #include <utility>
 
@@ -22,10 +25,32 @@ class CompensatedSum {
     sum_ = t;
   }
   double value() const { return sum_ + comp_; }
+  // Adds another sum's terms (its running sum, then its compensation).
+  void merge(const CompensatedSum& o) {
+    add(o.sum_);
+    add(o.comp_);
+  }
 
  private:
   double sum_ = 0.0, comp_ = 0.0;
 };
+
+// The passes cut the values into blocks of kStatisticsBlock, run the blocks on the team and
+// combine their partial results in block order (sums merged, extremes compared with the earlier
+// block winning ties, integer counts added), so the result does not depend on the team's size.
+std::size_t block_count(std::size_t n) {
+  return (n + kStatisticsBlock - 1) / kStatisticsBlock;
+}
+std::size_t block_begin(std::int64_t b) {
+  return static_cast<std::size_t>(b) * kStatisticsBlock;
+}
+std::size_t block_end(std::int64_t b, std::size_t n) {
+  return std::min(n, block_begin(b) + kStatisticsBlock);
+}
+int team_size(int threads, std::size_t blocks) {
+  const int wanted = threads > 0 ? threads : omp_get_max_threads();
+  return static_cast<int>(std::clamp<std::size_t>(blocks, 1, static_cast<std::size_t>(wanted)));
+}
 
 // The quantiles' bins: up to 65,536 bins over [lo, hi]; bin_of is monotone in the value (a
 // rounded difference, a positive scale, a truncation), so every value of a bin lies below every
@@ -48,8 +73,26 @@ class QuantileBins {
     const double t = (v - lo_) * scale_;  // in [0, bins]
     return t < bins_ - 1 ? static_cast<int>(t) : bins_ - 1;
   }
-  void count(double v) { ++count_[bin_of(v)]; }
+  int size() const { return bins_; }
   void add(double v, double w) { sum_[bin_of(v)].add(w); }
+  // Adds one thread's counts (per bin, in bin order) to the bins'.
+  void add_counts(const std::vector<std::size_t>& counts) {
+    for (int b = 0; b < bins_; ++b) count_[b] += counts[b];
+  }
+  // The bins' weight sums on a team of more than one thread (one thread adds them in its pass 2):
+  // each thread owns a range of bins and sums their weights in sample order, so every bin's sum
+  // is the one a single thread takes, whatever the team size.
+  void sum_weights(const std::vector<double>& values, const double* weights, int team) {
+#pragma omp parallel num_threads(team) if (team > 1)
+    {
+      const int me = omp_get_thread_num(), size = omp_get_num_threads();
+      const int first = bins_ * me / size, last = bins_ * (me + 1) / size;
+      for (std::size_t i = 0; i < n_; ++i) {
+        const int k = bin_of(values[i]);
+        if (k >= first && k < last) sum_[k].add(weights[i]);
+      }
+    }
+  }
 
   // The quantiles qs[0..4) (ascending) into *outs[q]: unweighted, the order statistics
   // k = ceil(q n) - 1; weighted, the smallest value whose cumulative weight (in ascending value
@@ -57,7 +100,7 @@ class QuantileBins {
   // element by element inside the quantile's bin); it can differ from a sum in sorted order by
   // an ulp, which matters only where it lies within an ulp of q total.
   void find(const std::vector<double>& values, const double* weights, double total,
-            const double qs[4], double* outs[4]) const {
+            const double qs[4], double* outs[4], int team) const {
     int bin[4];
     std::size_t rank[4] = {};
     CompensatedSum below[4];
@@ -86,35 +129,38 @@ class QuantileBins {
       }
     }
     if (weights == nullptr) {
-      select_in_bins(values, bin, rank, outs);
+      select_in_bins(values, bin, rank, outs, team);
       return;
     }
     // The values and weights of the quantiles' bins, one pass; the values equal to the minimum
     // lo_ (all in bin 0; often most of the sample, the exact zeros of coplanar parts) are not
-    // kept, only their weight summed (compensated, in sample order: it can differ from their sum
-    // in sorted order by an ulp, as the bins' sums can).
-    std::vector<int> slot(static_cast<std::size_t>(bins_), -1);
-    std::vector<std::vector<std::pair<double, double>>> held;
-    for (int q = 0; q < 4; ++q)
-      if (slot[bin[q]] < 0) {
-        slot[bin[q]] = static_cast<int>(held.size());
-        held.emplace_back();
+    // kept, only their weight summed (compensated, in sample order by blocks: it can differ from
+    // their sum in sorted order by an ulp, as the bins' sums can). The pairs are sorted below,
+    // so the order the threads gather them in does not matter.
+    const std::vector<int> slot = slots_of(bin);
+    const std::size_t blocks = block_count(n_);
+    std::vector<CompensatedSum> at_lo_part(blocks);
+    using Pairs = std::vector<std::pair<double, double>>;
+    auto held = gather<Pairs>(slot, team, [&](std::int64_t b, std::vector<Pairs>& mine) {
+      CompensatedSum at_lo;
+      for (std::size_t i = block_begin(b); i < block_end(b, n_); ++i) {
+        const double v = values[i];
+        const int k = slot[bin_of(v)];
+        if (k < 0) continue;
+        if (v == lo_)
+          at_lo.add(weights[i]);
+        else
+          mine[k].push_back({v, weights[i]});
       }
+      at_lo_part[b] = at_lo;
+    });
     CompensatedSum at_lo;
-    for (std::size_t i = 0; i < n_; ++i) {
-      const double v = values[i];
-      const int k = slot[bin_of(v)];
-      if (k < 0) continue;
-      if (v == lo_)
-        at_lo.add(weights[i]);
-      else
-        held[k].push_back({v, weights[i]});
-    }
+    for (const CompensatedSum& part : at_lo_part) at_lo.merge(part);
     std::vector<bool> sorted(held.size(), false);
     for (int q = 0; q < 4; ++q) {
       const double target = qs[q] * total;
       CompensatedSum cum = below[q];
-      std::vector<std::pair<double, double>>& h = held[slot[bin[q]]];
+      Pairs& h = held[slot[bin[q]]];
       if (bin[q] == 0) {
         cum.add(at_lo.value());
         if (cum.value() >= target || h.empty()) {
@@ -139,29 +185,61 @@ class QuantileBins {
   }
 
  private:
+  // slot[b]: the index of bin b among the quantiles' distinct bins, -1 for the other bins.
+  std::vector<int> slots_of(const int bin[4]) const {
+    std::vector<int> slot(static_cast<std::size_t>(bins_), -1);
+    int slots = 0;
+    for (int q = 0; q < 4; ++q)
+      if (slot[bin[q]] < 0) slot[bin[q]] = slots++;
+    return slot;
+  }
+
+  // What the blocks keep of the quantiles' bins, one Held per distinct bin: scan(b, mine) keeps
+  // block b's values in the calling thread's own Helds, which are then joined in thread order.
+  template <class Held, class Scan>
+  std::vector<Held> gather(const std::vector<int>& slot, int team, Scan scan) const {
+    const std::size_t slots =
+        static_cast<std::size_t>(*std::max_element(slot.begin(), slot.end()) + 1);
+    std::vector<std::vector<Held>> per_thread(static_cast<std::size_t>(team));
+    const auto blocks = static_cast<std::int64_t>(block_count(n_));
+#pragma omp parallel num_threads(team) if (team > 1)
+    {
+      std::vector<Held> mine(slots);
+#pragma omp for schedule(static)
+      for (std::int64_t b = 0; b < blocks; ++b) scan(b, mine);
+      per_thread[static_cast<std::size_t>(omp_get_thread_num())] = std::move(mine);
+    }
+    std::vector<Held> held = std::move(per_thread[0]);
+    for (std::size_t t = 1; t < per_thread.size(); ++t)
+      for (std::size_t k = 0; k < per_thread[t].size(); ++k)
+        held[k].insert(held[k].end(), per_thread[t][k].begin(), per_thread[t][k].end());
+    return held;
+  }
+
   // Unweighted: the value of rank rank[q] in bin bin[q], for each q. One pass gathers the values
   // of those bins, except the minimum lo_, which is only counted: bin 0 often holds most of the
   // sample and most of it at the minimum (the exact zeros of coplanar parts), and a rank below
-  // that count is the minimum itself. Then a selection per bin among the rest.
+  // that count is the minimum itself. Then a selection per bin among the rest (the k-th value
+  // does not depend on the order the threads gathered them in).
   void select_in_bins(const std::vector<double>& values, const int bin[4],
-                      const std::size_t rank[4], double* outs[4]) const {
-    std::vector<int> slot(static_cast<std::size_t>(bins_), -1);
-    std::vector<std::vector<double>> held;
-    for (int q = 0; q < 4; ++q)
-      if (slot[bin[q]] < 0) {
-        slot[bin[q]] = static_cast<int>(held.size());
-        held.emplace_back().reserve(count_[bin[q]]);
-      }
-    std::size_t at_lo = 0;
-    for (std::size_t i = 0; i < n_; ++i) {
-      const double v = values[i];
-      const int k = slot[bin_of(v)];
-      if (k < 0) continue;
-      if (v == lo_)
-        ++at_lo;  // only in bin 0
-      else
-        held[k].push_back(v);
-    }
+                      const std::size_t rank[4], double* outs[4], int team) const {
+    const std::vector<int> slot = slots_of(bin);
+    std::vector<std::size_t> at_lo_part(block_count(n_), 0);
+    auto held = gather<std::vector<double>>(
+        slot, team, [&](std::int64_t b, std::vector<std::vector<double>>& mine) {
+          std::size_t at_lo = 0;
+          for (std::size_t i = block_begin(b); i < block_end(b, n_); ++i) {
+            const double v = values[i];
+            const int k = slot[bin_of(v)];
+            if (k < 0) continue;
+            if (v == lo_)
+              ++at_lo;  // only in bin 0
+            else
+              mine[k].push_back(v);
+          }
+          at_lo_part[b] = at_lo;
+        });
+    const std::size_t at_lo = std::accumulate(at_lo_part.begin(), at_lo_part.end(), std::size_t{0});
     for (int q = 0; q < 4; ++q) {
       if (bin[q] == 0 && rank[q] < at_lo) {
         *outs[q] = lo_;
@@ -183,93 +261,167 @@ class QuantileBins {
 };
 
 // The passes over the values, for a weight function (all 1, or the given weights); the moments'
-// sums are compensated and taken in sample order. area_weights: the weights if they differ
-// (weighted quantiles and histogram shares), else nullptr.
+// sums are compensated, taken in sample order inside each block and merged in block order.
+// area_weights: the weights if they differ (weighted quantiles and histogram shares), else
+// nullptr. team: the threads that run the blocks.
 template <typename Weight>
 void fill(const std::vector<double>& values, Weight weight, const double* area_weights,
-          int histogram_bins, Statistics& s) {
+          int histogram_bins, int team, Statistics& s) {
   const bool area_weighted = area_weights != nullptr;
   const std::size_t n = values.size();
-  // Pass 1: extremes and the first two moments.
-  s.min = s.max = values[0];
-  CompensatedSum sum, sum_sq;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = values[i];
-    if (v < s.min) {
-      s.min = v;
-      s.argmin = i;
-    }
-    if (v > s.max) {
-      s.max = v;
-      s.argmax = i;
-    }
-    sum.add(weight(i) * v);
-    sum_sq.add(weight(i) * v * v);
-  }
-  s.mean = sum.value() / s.weight_sum;
-  s.rms = std::sqrt(std::max(0.0, sum_sq.value() / s.weight_sum));
+  const auto blocks = static_cast<std::int64_t>(block_count(n));
 
-  // Pass 2: the variance, the histogram over [min(0, min), max] and the quantiles' bins.
+  // Pass 1: extremes and the first two moments.
+  struct Moments {
+    double min, max;
+    std::size_t argmin, argmax;
+    CompensatedSum sum, sum_sq;
+  };
+  std::vector<Moments> moments(static_cast<std::size_t>(blocks));
+#pragma omp parallel for num_threads(team) schedule(static) if (team > 1)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::size_t begin = block_begin(b);
+    Moments m{values[begin], values[begin], begin, begin, {}, {}};
+    for (std::size_t i = begin; i < block_end(b, n); ++i) {
+      const double v = values[i];
+      if (v < m.min) {
+        m.min = v;
+        m.argmin = i;
+      }
+      if (v > m.max) {
+        m.max = v;
+        m.argmax = i;
+      }
+      m.sum.add(weight(i) * v);
+      m.sum_sq.add(weight(i) * v * v);
+    }
+    moments[b] = m;
+  }
+  Moments all = moments[0];
+  for (std::size_t b = 1; b < moments.size(); ++b) {
+    const Moments& m = moments[b];
+    if (m.min < all.min) {
+      all.min = m.min;
+      all.argmin = m.argmin;
+    }
+    if (m.max > all.max) {
+      all.max = m.max;
+      all.argmax = m.argmax;
+    }
+    all.sum.merge(m.sum);
+    all.sum_sq.merge(m.sum_sq);
+  }
+  s.min = all.min;
+  s.max = all.max;
+  s.argmin = all.argmin;
+  s.argmax = all.argmax;
+  s.mean = all.sum.value() / s.weight_sum;
+  s.rms = std::sqrt(std::max(0.0, all.sum_sq.value() / s.weight_sum));
+
+  // Pass 2: the variance, the histogram over [min(0, min), max] and the quantiles' bins (counts
+  // per thread, added; weight sums per block for the histogram, by ranges of bins for the
+  // quantiles).
   const int bins = std::max(1, histogram_bins);
+  const auto nbins = static_cast<std::size_t>(bins);
   const double lo = std::min(0.0, s.min), hi = s.max;
   Histogram& h = s.histogram;
-  h.edges.resize(static_cast<std::size_t>(bins) + 1);
+  h.edges.resize(nbins + 1);
   for (int b = 0; b <= bins; ++b) h.edges[b] = lo + (hi - lo) * b / bins;
-  h.counts.assign(static_cast<std::size_t>(bins), 0);
-  std::vector<CompensatedSum> wbin(area_weighted ? static_cast<std::size_t>(bins) : 0);
+  h.counts.assign(nbins, 0);
   QuantileBins quantile_bins(n, s.min, s.max, area_weighted);
-  CompensatedSum var;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = values[i];
-    var.add(weight(i) * (v - s.mean) * (v - s.mean));
-    int b = hi > lo ? static_cast<int>((v - lo) / (hi - lo) * bins) : 0;
-    b = std::clamp(b, 0, bins - 1);
-    ++h.counts[b];
-    if (area_weighted) {
-      wbin[b].add(weight(i));
-      quantile_bins.add(v, weight(i));
-    } else {
-      quantile_bins.count(v);
+  std::vector<CompensatedSum> var_part(static_cast<std::size_t>(blocks));
+  std::vector<CompensatedSum> wbin_part(area_weighted ? moments.size() * nbins : 0);
+  std::vector<std::vector<std::size_t>> hist_of(static_cast<std::size_t>(team));
+  std::vector<std::vector<std::size_t>> quantile_counts_of(static_cast<std::size_t>(team));
+#pragma omp parallel num_threads(team) if (team > 1)
+  {
+    std::vector<std::size_t> hist(nbins, 0);
+    std::vector<std::size_t> quantile_counts(
+        area_weighted ? 0 : static_cast<std::size_t>(quantile_bins.size()), 0);
+#pragma omp for schedule(static)
+    for (std::int64_t blk = 0; blk < blocks; ++blk) {
+      CompensatedSum var;
+      CompensatedSum* wbin =
+          area_weighted ? &wbin_part[static_cast<std::size_t>(blk) * nbins] : nullptr;
+      for (std::size_t i = block_begin(blk); i < block_end(blk, n); ++i) {
+        const double v = values[i];
+        var.add(weight(i) * (v - s.mean) * (v - s.mean));
+        int b = hi > lo ? static_cast<int>((v - lo) / (hi - lo) * bins) : 0;
+        b = std::clamp(b, 0, bins - 1);
+        ++hist[b];
+        if (!area_weighted) {
+          ++quantile_counts[quantile_bins.bin_of(v)];
+          continue;
+        }
+        wbin[b].add(weight(i));
+        if (team == 1) quantile_bins.add(v, weight(i));
+      }
+      var_part[blk] = var;
     }
+    const auto me = static_cast<std::size_t>(omp_get_thread_num());
+    hist_of[me] = std::move(hist);
+    quantile_counts_of[me] = std::move(quantile_counts);
   }
+  CompensatedSum var;
+  for (const CompensatedSum& part : var_part) var.merge(part);
   s.variance = var.value() / s.weight_sum;
   s.stddev = std::sqrt(s.variance);
+  for (std::size_t t = 0; t < hist_of.size(); ++t) {
+    if (hist_of[t].empty()) continue;  // a thread the team did not get
+    for (std::size_t b = 0; b < nbins; ++b) h.counts[b] += hist_of[t][b];
+    if (!area_weighted) quantile_bins.add_counts(quantile_counts_of[t]);
+  }
+  if (area_weighted && team > 1) quantile_bins.sum_weights(values, area_weights, team);
 
   // Equal weights: each bin's share is its count's (exactly, without summing weights).
-  h.weight_fraction.resize(static_cast<std::size_t>(bins));
-  for (int b = 0; b < bins; ++b) {
+  h.weight_fraction.resize(nbins);
+  for (std::size_t b = 0; b < nbins; ++b) {
     if (!area_weighted) {
       h.weight_fraction[b] = static_cast<double>(h.counts[b]) / static_cast<double>(n);
       continue;
     }
-    h.weight_fraction[b] = wbin[b].value() / s.weight_sum;
+    CompensatedSum share;
+    for (std::size_t blk = 0; blk < moments.size(); ++blk) share.merge(wbin_part[blk * nbins + b]);
+    h.weight_fraction[b] = share.value() / s.weight_sum;
   }
 
   // Weighted quantiles: the smallest value whose cumulative weight reaches q of the total.
   const double qs[4] = {0.50, 0.90, 0.95, 0.99};
   double* outs[4] = {&s.p50, &s.p90, &s.p95, &s.p99};
-  quantile_bins.find(values, area_weights, s.weight_sum, qs, outs);
+  quantile_bins.find(values, area_weights, s.weight_sum, qs, outs, team);
 }
 
 }  // namespace
 
 Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
-                              int histogram_bins) {
+                              int histogram_bins, int threads) {
   assert(weights.empty() || weights.size() == values.size());
   Statistics s;
   s.count = values.size();
   if (values.empty()) return s;
+  const std::size_t blocks = block_count(values.size());
+  const int team = team_size(threads, blocks);
 
   // Weights: uniform when absent or all zero; area-weighted when they differ.
   bool uniform = weights.empty();
   if (!uniform) {
-    CompensatedSum wsum;
-    bool differ = false;
+    std::vector<CompensatedSum> sum_part(blocks);
+    std::vector<char> differ_part(blocks, 0);
     const double w0 = weights[0];
-    for (double w : weights) {
-      wsum.add(w);
-      differ |= w != w0;
+#pragma omp parallel for num_threads(team) schedule(static) if (team > 1)
+    for (std::int64_t b = 0; b < static_cast<std::int64_t>(blocks); ++b) {
+      CompensatedSum sum;
+      bool differ = false;
+      for (std::size_t i = block_begin(b); i < block_end(b, weights.size()); ++i) {
+        sum.add(weights[i]);
+        differ |= weights[i] != w0;
+      }
+      sum_part[b] = sum;
+      differ_part[b] = differ;
     }
+    CompensatedSum wsum;
+    for (const CompensatedSum& part : sum_part) wsum.merge(part);
+    const bool differ = std::find(differ_part.begin(), differ_part.end(), 1) != differ_part.end();
     uniform = !(wsum.value() > 0.0);
     s.weight_sum = wsum.value();
     s.area_weighted = !uniform && differ;
@@ -277,11 +429,11 @@ Statistics compute_statistics(const std::vector<double>& values, const std::vect
   if (uniform) {
     s.weight_sum = static_cast<double>(values.size());
     fill(
-        values, [](std::size_t) { return 1.0; }, nullptr, histogram_bins, s);
+        values, [](std::size_t) { return 1.0; }, nullptr, histogram_bins, team, s);
   } else {
     fill(
         values, [&weights](std::size_t i) { return weights[i]; },
-        s.area_weighted ? weights.data() : nullptr, histogram_bins, s);
+        s.area_weighted ? weights.data() : nullptr, histogram_bins, team, s);
   }
   return s;
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Summary statistics of per-sample deviations, optionally weighted (area weights of face
-// samples). Deterministic: computed serially in sample order with compensated sums, so the result
-// does not depend on the thread count that produced the values.
+// samples). Deterministic: compensated sums taken in sample order inside fixed blocks of
+// kStatisticsBlock values and merged in block order, so the result depends neither on the thread
+// count that produced the values nor on the one that summarises them.
 #include <cstddef>
 #include <vector>
 
@@ -24,12 +25,18 @@ struct Statistics {
   Histogram histogram;
 };
 
+// Values per block of the passes (a block's sums are taken in sample order; blocks run on the
+// threads and are merged in block order).
+constexpr std::size_t kStatisticsBlock = std::size_t{1} << 15;
+
 // Statistics of `values` with `weights` (empty = all 1). Samples with weight 0 count for min, max
 // and the histogram counts only. If every weight is 0, all samples are weighted equally.
+// threads: the OpenMP team for the passes (0 = OpenMP's default; a set of one block runs on
+// the calling thread); the result is the same for every team size.
 // Precondition: weights empty or the same size as values, weights >= 0. O(n) (quantiles: a
 // histogram pass, then selection inside the quantiles' bins; O(n log n) only if they hold most
-// values).
+// values); about 3 passes over the values plus, for area weights, one per thread.
 Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
-                              int histogram_bins = 32);
+                              int histogram_bins = 32, int threads = 1);
 
 }  // namespace meshdev

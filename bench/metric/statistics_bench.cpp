@@ -5,7 +5,7 @@
 // 1 + 0.1 N(0, 1) per sample: neighbouring samples deviate alike, as they do in sample order.
 // Weights all equal (Monte Carlo samples) or spread (scan-converted samples weigh their share of
 // the face's area). Third argument: the percentage of exact zeros (coplanar parts: 76-99 % of
-// the samples of buildings.ply against its 40k-face simplification).
+// the samples of buildings.ply against its 40k-face simplification). Fourth: the threads.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -22,6 +22,7 @@ void BM_Statistics(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const bool spread = state.range(1) != 0;
   const double zeros = static_cast<double>(state.range(2)) / 100.0;
+  const int threads = static_cast<int>(state.range(3));
   std::mt19937_64 rng(1);
   std::normal_distribution<double> gauss;
   std::uniform_real_distribution<double> uniform(0.5, 1.5);
@@ -34,18 +35,17 @@ void BM_Statistics(benchmark::State& state) {
     weights[i] = spread ? uniform(rng) : 1e-6;
   }
   for (auto _ : state) {
-    const Statistics s = compute_statistics(values, weights, 20);
+    const Statistics s = compute_statistics(values, weights, 20, threads);
     benchmark::DoNotOptimize(s.p99);
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * n));
   state.SetLabel(std::string(spread ? "spread weights" : "equal weights") + ", " +
-                 std::to_string(state.range(2)) + " % zeros");
+                 std::to_string(state.range(2)) + " % zeros, " + std::to_string(threads) +
+                 (threads == 1 ? " thread" : " threads"));
 }
 BENCHMARK(BM_Statistics)
-    ->Args({1 << 20, 0, 0})
-    ->Args({1 << 20, 1, 0})
-    ->Args({1 << 20, 0, 75})
-    ->Args({1 << 20, 1, 75})
+    ->ArgsProduct({{1 << 20}, {0, 1}, {0, 75}, {1, 2}})
+    ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -85,17 +85,21 @@ std::array<double, 4> sorted_twin_quantiles(const std::vector<double>& values,
 }
 
 // compute_statistics' quantiles of `values`, with equal weights and then with `weights`, must be
-// the sorted twin's exactly.
+// the sorted twin's exactly, on teams of 1, 2 and 3 threads (sets of more than one block gather
+// the quantiles' bins on every thread).
 void expect_quantiles_are_the_sorted_twins(const std::vector<double>& values,
                                            const std::vector<double>& weights,
                                            const std::string& what) {
   for (bool weighted : {false, true}) {
     const std::vector<double> w = weighted ? weights : std::vector<double>{};
-    const Statistics s = compute_statistics(values, w);
-    const double got[4] = {s.p50, s.p90, s.p95, s.p99};
     const std::array<double, 4> want = sorted_twin_quantiles(values, w);
-    for (int q = 0; q < 4; ++q)
-      EXPECT_EQ(got[q], want[q]) << what << " weighted " << weighted << " q " << q;
+    for (int threads : {1, 2, 3}) {
+      const Statistics s = compute_statistics(values, w, 32, threads);
+      const double got[4] = {s.p50, s.p90, s.p95, s.p99};
+      for (int q = 0; q < 4; ++q)
+        EXPECT_EQ(got[q], want[q])
+            << what << " weighted " << weighted << " q " << q << " threads " << threads;
+    }
   }
 }
 
@@ -147,9 +151,11 @@ TEST(Statistics, QuantilesOfSamplesMostlyAtTheirMinimum) {
   }
 }
 
-// The fused passes against a plain twin: one quantity per loop, in sample order, each sum
-// compensated the same way (so the moments agree bit for bit), histogram shares summed per bin.
-// Values repeat their extremes (the first index must win); weights absent, equal or spread.
+// The fused passes against a plain twin: one quantity per loop, in sample order inside each
+// block of kStatisticsBlock values, each sum compensated the same way and the blocks' sums merged
+// in block order (so the moments agree bit for bit), histogram shares summed per bin. Values
+// repeat their extremes (the first index must win); weights absent, equal or spread; sets of
+// one block and of several (the last one short), on teams of 1 and 2 threads.
 TEST(Statistics, FusedPassesEqualThePlainTwin) {
   struct Sum {  // Neumaier
     double s = 0, c = 0;
@@ -160,28 +166,43 @@ TEST(Statistics, FusedPassesEqualThePlainTwin) {
     }
     double value() const { return s + c; }
   };
+  // Sum of term(i) over [0, n): Neumaier inside each block, the blocks' (s, c) added in order.
+  auto blocked_sum = [](std::size_t n, auto term) {
+    Sum all;
+    for (std::size_t begin = 0; begin < n; begin += kStatisticsBlock) {
+      Sum block;
+      for (std::size_t i = begin; i < std::min(n, begin + kStatisticsBlock); ++i)
+        block.add(term(i));
+      all.add(block.s);
+      all.add(block.c);
+    }
+    return all.value();
+  };
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  for (std::size_t n : {1u, 2u, 17u, 1000u, 30000u}) {
+  for (std::size_t n : {std::size_t{1}, std::size_t{2}, std::size_t{17}, std::size_t{1000},
+                        std::size_t{30000}, 2 * kStatisticsBlock + 1001}) {
     std::vector<double> values(n), spread(n);
     for (std::size_t i = 0; i < n; ++i) {
       values[i] = std::floor(u(rng) * 40.0) * 0.37 - 2.0;  // negatives, ties at both ends
       spread[i] = u(rng) < 0.1 ? 0.0 : u(rng);
     }
-    for (int mode = 0; mode < 3; ++mode) {
+    for (int mode = 0; mode < 6; ++mode) {
+      const int threads = 1 + mode / 3;
       const std::vector<double> weights =
-          mode == 0 ? std::vector<double>{} : (mode == 1 ? std::vector<double>(n, 0.3) : spread);
-      const Statistics s = compute_statistics(values, weights, 7);
-      Sum given;  // all-zero weights count as equal ones
-      for (double x : weights) given.add(x);
-      const bool equal = weights.empty() || !(given.value() > 0.0);
+          mode % 3 == 0 ? std::vector<double>{}
+                        : (mode % 3 == 1 ? std::vector<double>(n, 0.3) : spread);
+      const Statistics s = compute_statistics(values, weights, 7, threads);
+      const bool equal =
+          weights.empty() || !(blocked_sum(n, [&](std::size_t i) { return weights[i]; }) > 0.0);
       auto w = [&](std::size_t i) { return equal ? 1.0 : weights[i]; };
-      Sum total, sum, sum_sq, var;
-      for (std::size_t i = 0; i < n; ++i) total.add(w(i));
-      for (std::size_t i = 0; i < n; ++i) sum.add(w(i) * values[i]);
-      for (std::size_t i = 0; i < n; ++i) sum_sq.add(w(i) * values[i] * values[i]);
-      const double mean = sum.value() / total.value();
-      for (std::size_t i = 0; i < n; ++i) var.add(w(i) * (values[i] - mean) * (values[i] - mean));
+      const double total = blocked_sum(n, w);
+      const double sum = blocked_sum(n, [&](std::size_t i) { return w(i) * values[i]; });
+      const double sum_sq =
+          blocked_sum(n, [&](std::size_t i) { return w(i) * values[i] * values[i]; });
+      const double mean = sum / total;
+      const double var = blocked_sum(
+          n, [&](std::size_t i) { return w(i) * (values[i] - mean) * (values[i] - mean); });
       const auto lo = std::min_element(values.begin(), values.end());
       const auto hi = std::max_element(values.begin(), values.end());  // the first maximum
       const std::string where = "n " + std::to_string(n) + " mode " + std::to_string(mode);
@@ -189,11 +210,11 @@ TEST(Statistics, FusedPassesEqualThePlainTwin) {
       EXPECT_EQ(s.max, *hi) << where;
       EXPECT_EQ(s.argmin, static_cast<std::size_t>(lo - values.begin())) << where;
       EXPECT_EQ(s.argmax, static_cast<std::size_t>(hi - values.begin())) << where;
-      EXPECT_EQ(s.weight_sum, total.value()) << where;
+      EXPECT_EQ(s.weight_sum, total) << where;
       EXPECT_EQ(s.mean, mean) << where;
-      EXPECT_EQ(s.rms, std::sqrt(std::max(0.0, sum_sq.value() / total.value()))) << where;
-      EXPECT_EQ(s.variance, var.value() / total.value()) << where;
-      EXPECT_EQ(s.area_weighted, mode == 2 && n > 1 && !equal) << where;
+      EXPECT_EQ(s.rms, std::sqrt(std::max(0.0, sum_sq / total))) << where;
+      EXPECT_EQ(s.variance, var / total) << where;
+      EXPECT_EQ(s.area_weighted, mode % 3 == 2 && n > 1 && !equal) << where;
       const double h_lo = std::min(0.0, *lo), h_hi = *hi;
       std::vector<std::size_t> counts(7, 0);
       std::vector<Sum> share(7);
@@ -205,7 +226,7 @@ TEST(Statistics, FusedPassesEqualThePlainTwin) {
       }
       for (int b = 0; b < 7; ++b) {
         EXPECT_EQ(s.histogram.counts[b], counts[b]) << where << " bin " << b;
-        EXPECT_NEAR(s.histogram.weight_fraction[b], share[b].value() / total.value(), 1e-15)
+        EXPECT_NEAR(s.histogram.weight_fraction[b], share[b].value() / total, 1e-15)
             << where << " bin " << b;
       }
     }
