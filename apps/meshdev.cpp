@@ -1,5 +1,8 @@
 // meshdev: how far one mesh is from another, in geometry and in appearance.
+#include <malloc.h>
 #include <CLI/CLI.hpp>
+
+#include <climits>
 #include <iostream>
 #include <new>
 
@@ -9,6 +12,13 @@
 
 int main(int argc, char** argv) {
   using namespace meshdev::app;
+  // glibc: large blocks from the heap instead of their own mappings, and freed memory kept by
+  // the process. A comparison's second direction then reuses the first one's samples and
+  // deviation arrays (about 100 MB for 1M samples) instead of faulting fresh pages in one by one:
+  // half of `meshdev compare`'s page faults (docs/performance.md).
+  // A failure (mallopt returns 0) costs speed only.
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);
   CLI::App app{"meshdev " MESHDEV_VERSION
                ": mesh comparison with the attribute deviation metric (Roy, Foufou, Truchetet)"};
   app.set_version_flag("--version", MESHDEV_VERSION);
