@@ -391,51 +391,84 @@ void fill(const std::vector<double>& values, Weight weight, const double* area_w
   quantile_bins.find(values, area_weights, s.weight_sum, qs, outs, team);
 }
 
-}  // namespace
+// What the statistics need to know of the weights: uniform (absent or all zero: every sample
+// counts 1), equal (every weight is w0), their compensated sum. One blocked pass.
+struct WeightCheck {
+  bool uniform = true, equal = true;
+  double w0 = 1.0, sum = 0.0;
+};
+WeightCheck check_weights(const std::vector<double>& weights, int team) {
+  WeightCheck c;
+  if (weights.empty()) return c;
+  const std::size_t blocks = block_count(weights.size());
+  std::vector<CompensatedSum> sum_part(blocks);
+  std::vector<char> differ_part(blocks, 0);
+  const double w0 = weights[0];
+#pragma omp parallel for num_threads(team) schedule(static) if (team > 1)
+  for (std::int64_t b = 0; b < static_cast<std::int64_t>(blocks); ++b) {
+    CompensatedSum sum;
+    bool differ = false;
+    for (std::size_t i = block_begin(b); i < block_end(b, weights.size()); ++i) {
+      sum.add(weights[i]);
+      differ |= weights[i] != w0;
+    }
+    sum_part[b] = sum;
+    differ_part[b] = differ;
+  }
+  CompensatedSum wsum;
+  for (const CompensatedSum& part : sum_part) wsum.merge(part);
+  c.sum = wsum.value();
+  c.uniform = !(c.sum > 0.0);
+  c.equal = std::find(differ_part.begin(), differ_part.end(), 1) == differ_part.end();
+  c.w0 = w0;
+  return c;
+}
 
-Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
-                              int histogram_bins, int threads) {
+Statistics statistics_with(const std::vector<double>& values, const std::vector<double>& weights,
+                           const WeightCheck& c, int histogram_bins, int team) {
   assert(weights.empty() || weights.size() == values.size());
   Statistics s;
   s.count = values.size();
   if (values.empty()) return s;
-  const std::size_t blocks = block_count(values.size());
-  const int team = team_size(threads, blocks);
-
-  // Weights: uniform when absent or all zero; area-weighted when they differ.
-  bool uniform = weights.empty();
-  if (!uniform) {
-    std::vector<CompensatedSum> sum_part(blocks);
-    std::vector<char> differ_part(blocks, 0);
-    const double w0 = weights[0];
-#pragma omp parallel for num_threads(team) schedule(static) if (team > 1)
-    for (std::int64_t b = 0; b < static_cast<std::int64_t>(blocks); ++b) {
-      CompensatedSum sum;
-      bool differ = false;
-      for (std::size_t i = block_begin(b); i < block_end(b, weights.size()); ++i) {
-        sum.add(weights[i]);
-        differ |= weights[i] != w0;
-      }
-      sum_part[b] = sum;
-      differ_part[b] = differ;
-    }
-    CompensatedSum wsum;
-    for (const CompensatedSum& part : sum_part) wsum.merge(part);
-    const bool differ = std::find(differ_part.begin(), differ_part.end(), 1) != differ_part.end();
-    uniform = !(wsum.value() > 0.0);
-    s.weight_sum = wsum.value();
-    s.area_weighted = !uniform && differ;
-  }
-  if (uniform) {
+  if (c.uniform) {
     s.weight_sum = static_cast<double>(values.size());
     fill(
         values, [](std::size_t) { return 1.0; }, nullptr, histogram_bins, team, s);
+    return s;
+  }
+  s.weight_sum = c.sum;
+  s.area_weighted = !c.equal;
+  if (c.equal) {  // every weight is w0: the same products without reading the weights
+    fill(
+        values, [w0 = c.w0](std::size_t) { return w0; }, nullptr, histogram_bins, team, s);
   } else {
     fill(
-        values, [&weights](std::size_t i) { return weights[i]; },
-        s.area_weighted ? weights.data() : nullptr, histogram_bins, team, s);
+        values, [&weights](std::size_t i) { return weights[i]; }, weights.data(), histogram_bins,
+        team, s);
   }
   return s;
+}
+
+}  // namespace
+
+Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
+                              int histogram_bins, int threads) {
+  const int team = team_size(threads, block_count(values.size()));
+  return statistics_with(values, weights, check_weights(weights, team), histogram_bins, team);
+}
+
+std::vector<Statistics> compute_statistics_of_each(const std::vector<std::vector<double>>& values,
+                                                   const std::vector<double>& weights,
+                                                   int histogram_bins, int threads) {
+  std::vector<Statistics> out;
+  if (values.empty()) return out;
+  const int team = team_size(threads, block_count(values[0].size()));
+  const WeightCheck c = check_weights(weights, team);
+  for (const std::vector<double>& v : values) {
+    assert(v.size() == values[0].size());
+    out.push_back(statistics_with(v, weights, c, histogram_bins, team));
+  }
+  return out;
 }
 
 }  // namespace meshdev

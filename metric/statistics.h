@@ -39,4 +39,10 @@ constexpr std::size_t kStatisticsBlock = std::size_t{1} << 15;
 Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
                               int histogram_bins = 32, int threads = 1);
 
+// compute_statistics of each of several measures' values over the same samples and weights (each
+// the size of `weights`, or weights empty), the weights checked once. O(n) per measure.
+std::vector<Statistics> compute_statistics_of_each(const std::vector<std::vector<double>>& values,
+                                                   const std::vector<double>& weights,
+                                                   int histogram_bins = 32, int threads = 1);
+
 }  // namespace meshdev

@@ -233,6 +233,52 @@ TEST(Statistics, FusedPassesEqualThePlainTwin) {
   }
 }
 
+// Several measures at once (the weights checked once) give each measure's own statistics, field
+// by field, for absent, equal, spread and all-zero weights on 1 and 2 threads.
+TEST(Statistics, OfEachEqualsEachMeasuresOwn) {
+  std::mt19937_64 rng(9);
+  std::exponential_distribution<double> e(2.0);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::size_t n = kStatisticsBlock + 777;
+  std::vector<std::vector<double>> measures(3, std::vector<double>(n));
+  std::vector<double> spread(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    measures[0][i] = e(rng);
+    measures[1][i] = u(rng) < 0.7 ? 0.0 : e(rng);
+    measures[2][i] = std::floor(u(rng) * 90.0);
+    spread[i] = u(rng);
+  }
+  const std::vector<std::vector<double>> weight_sets = {
+      {}, std::vector<double>(n, 0.125), spread, std::vector<double>(n, 0.0)};
+  for (std::size_t w = 0; w < weight_sets.size(); ++w) {
+    for (int threads : {1, 2}) {
+      const std::vector<Statistics> each =
+          compute_statistics_of_each(measures, weight_sets[w], 16, threads);
+      ASSERT_EQ(each.size(), measures.size());
+      for (std::size_t m = 0; m < measures.size(); ++m) {
+        const Statistics own = compute_statistics(measures[m], weight_sets[w], 16, threads);
+        const Statistics& got = each[m];
+        const std::string where = "weights " + std::to_string(w) + " threads " +
+                                  std::to_string(threads) + " measure " + std::to_string(m);
+        EXPECT_EQ(got.count, own.count) << where;
+        EXPECT_EQ(got.weight_sum, own.weight_sum) << where;
+        EXPECT_EQ(got.area_weighted, own.area_weighted) << where;
+        EXPECT_EQ(got.area_weighted, w == 2) << where;
+        const double a[] = {got.min, got.max, got.mean, got.variance, got.stddev,
+                            got.rms, got.p50, got.p90,  got.p95,      got.p99};
+        const double b[] = {own.min, own.max, own.mean, own.variance, own.stddev,
+                            own.rms, own.p50, own.p90,  own.p95,      own.p99};
+        for (int k = 0; k < 10; ++k) EXPECT_EQ(a[k], b[k]) << where << " field " << k;
+        EXPECT_EQ(got.argmin, own.argmin) << where;
+        EXPECT_EQ(got.argmax, own.argmax) << where;
+        EXPECT_EQ(got.histogram.counts, own.histogram.counts) << where;
+        EXPECT_EQ(got.histogram.weight_fraction, own.histogram.weight_fraction) << where;
+      }
+    }
+  }
+  EXPECT_TRUE(compute_statistics_of_each({}, {}).empty());
+}
+
 // A cumulative weight that reaches q of the total exactly at the end of a bin: that bin's last
 // value is the quantile (32 values, 2 bins; weights 0.5, 1.5, ... below 16, then 1).
 TEST(Statistics, WeightedQuantileReachedExactlyAtABinsEnd) {
