@@ -46,18 +46,22 @@ void morton_order(const Vec3* points, std::size_t n, const BoundingBox& box,
   }
   if (descents == 0) return;
   // Every code shares the bits above the highest one in which the least and the most differ;
-  // sort by the 30 bits from that one down, with the point's index in the low word.
+  // sort by the kMortonSortBits bits from that one down, with the point's index in the low word.
+  constexpr int kPassBits = 8;
+  static_assert(kMortonSortBits % kPassBits == 0, "whole passes");
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << kMortonSortBits) - 1;
   const int top = 63 - __builtin_clzll(least ^ most);  // least != most: there is a descent
-  const int low = std::max(0, top - 29);
-  for (std::size_t i = 0; i < n; ++i) keys[i] = (keys[i] >> low & 0x3fffffffu) << 32 | i;
-  // LSD radix sort on those 30 bits, 8 per pass (stable: equal keys keep their order).
+  const int low = std::max(0, top - (kMortonSortBits - 1));
+  for (std::size_t i = 0; i < n; ++i) keys[i] = (keys[i] >> low & kMask) << 32 | i;
+  // LSD radix sort on those bits, 8 per pass (stable: equal keys keep their order).
   std::uint64_t* from = keys.data();
   std::uint64_t* to = keys.data() + n;
-  for (int shift = 32; shift < 62; shift += 8) {
-    std::size_t start[257] = {};
-    for (std::size_t i = 0; i < n; ++i) ++start[(from[i] >> shift & 0xffu) + 1];
-    for (int b = 0; b < 256; ++b) start[b + 1] += start[b];
-    for (std::size_t i = 0; i < n; ++i) to[start[from[i] >> shift & 0xffu]++] = from[i];
+  constexpr std::size_t kBins = std::size_t{1} << kPassBits;
+  for (int shift = 32; shift < 32 + kMortonSortBits; shift += kPassBits) {
+    std::size_t start[kBins + 1] = {};
+    for (std::size_t i = 0; i < n; ++i) ++start[(from[i] >> shift & (kBins - 1)) + 1];
+    for (std::size_t b = 0; b < kBins; ++b) start[b + 1] += start[b];
+    for (std::size_t i = 0; i < n; ++i) to[start[from[i] >> shift & (kBins - 1)]++] = from[i];
     std::swap(from, to);
   }
   for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(from[i]);

@@ -9,7 +9,8 @@
 // Codes: 21 bits per axis on a cubic grid over a box the caller gives (for compute_deviations,
 // the reference mesh's box, which holds all its samples, so a run cut from a set already sorted
 // along that curve is recognised as sorted), interleaved x-y-z (x in the lowest bit). A run is
-// sorted by the 30 highest bits in which its codes differ (finer bits keep the input order).
+// sorted by the kMortonSortBits highest bits in which its codes differ (finer bits keep the input
+// order).
 // Deterministic. Ref: Morton, "A computer oriented geodetic data base..." (IBM, 1966).
 #include <cstddef>
 #include <cstdint>
@@ -30,6 +31,11 @@ struct MortonSpread {
 };
 inline constexpr MortonSpread kMortonSpread{};
 }  // namespace detail
+
+// The bits a run is sorted by (morton_order): 24, three radix passes of 8. A run of 1,024 points
+// then has about 16,000 cells per point; 30 bits (four passes) cost more for the same queries,
+// 22 bits in two passes of 11 more still (the 2,048-bin prefix sums; docs/performance.md).
+inline constexpr int kMortonSortBits = 24;
 
 // The cubic grid over a box that the codes are taken on: 2^21 cells per axis.
 class MortonGrid {

@@ -17,8 +17,8 @@ BoundingBox box_of(const std::vector<Vec3>& p) {
   return box;
 }
 
-// The brute-force twin: each code bit by bit, then a stable sort by the 30 highest bits in which
-// the codes differ.
+// The brute-force twin: each code bit by bit, then a stable sort by the kMortonSortBits highest
+// bits in which the codes differ.
 std::vector<std::uint32_t> reference_order(const std::vector<Vec3>& p, const BoundingBox& box) {
   const Vec3 e = box.max - box.min;
   const double scale = 2097151.0 / std::max({e.x, e.y, e.z});
@@ -33,11 +33,12 @@ std::vector<std::uint32_t> reference_order(const std::vector<Vec3>& p, const Bou
   const auto [least, most] = std::minmax_element(code.begin(), code.end());
   int top = 63;
   while (top > 0 && ((*least ^ *most) >> top & 1u) == 0) --top;
-  const int low = std::max(0, top - 29);
+  const int low = std::max(0, top - (kMortonSortBits - 1));
+  const std::uint64_t mask = (std::uint64_t{1} << kMortonSortBits) - 1;
   std::vector<std::uint32_t> order(p.size());
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    return (code[a] >> low & 0x3fffffffu) < (code[b] >> low & 0x3fffffffu);
+    return (code[a] >> low & mask) < (code[b] >> low & mask);
   });
   return order;
 }
@@ -75,18 +76,20 @@ TEST(MortonOrder, VisitsAGridCellByCell) {
 }
 
 // What compute_deviations relies on to leave sorted samples alone: a run cut from a set sorted
-// along the curve of the same box is already in order.
+// along the curve of the same box (by the whole codes, as peer_compare --order morton sorts) is
+// already in order.
 TEST(MortonOrder, RunsOfASortedSetAreLeftAsTheyAre) {
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::vector<Vec3> p(20000);
   for (Vec3& x : p) x = {u(rng), 2 * u(rng), u(rng)};
   const BoundingBox box = box_of(p);
+  const MortonGrid grid(box);
+  std::vector<Vec3> sorted = p;
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [&](const Vec3& a, const Vec3& b) { return grid.code(a) < grid.code(b); });
   std::vector<std::uint32_t> order;
   std::vector<std::uint64_t> keys;
-  morton_order(p.data(), p.size(), box, order, keys);
-  std::vector<Vec3> sorted;
-  for (std::uint32_t i : order) sorted.push_back(p[i]);
   for (std::size_t begin : {0u, 1024u, 7000u, 18976u}) {
     morton_order(sorted.data() + begin, 1024, box, order, keys);
     for (std::uint32_t i = 0; i < order.size(); ++i) ASSERT_EQ(order[i], i) << begin;
