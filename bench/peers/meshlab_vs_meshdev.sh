@@ -4,6 +4,10 @@
 # Distance" filter run twice (A->B and B->A), SampleFace only, SampleNum = N, MaxDist far above
 # any distance so no sample is dropped. Best of R runs each; prints the ratio.
 #
+# meshdev is timed twice: with its default measures (geometry, normal, normal angle: more work
+# than MeshLab's filter, which computes distances only) and with `--attributes geometry` (the
+# same quantity as MeshLab's: the like-for-like ratio).
+#
 # MeshLab is timed two ways:
 #   xvfb  - `xvfb-run -a meshlabserver ...` (what a user runs headless; includes X startup)
 #   warm  - meshlabserver against a persistent Xvfb started here (no X startup; MeshLab's best)
@@ -18,11 +22,11 @@ n=1000000 reps=3 csv="" build="$repo/build-peers"
 while getopts "n:r:o:b:" opt; do
   case $opt in
     n) n=$OPTARG ;; r) reps=$OPTARG ;; o) csv=$OPTARG ;; b) build=$OPTARG ;;
-    *) sed -n '2,16p' "$0"; exit 2 ;;
+    *) sed -n '2,20p' "$0"; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
-(( $# >= 2 && $# % 2 == 0 )) || { sed -n '2,16p' "$0"; exit 2; }
+(( $# >= 2 && $# % 2 == 0 )) || { sed -n '2,20p' "$0"; exit 2; }
 meshdev="$build/apps/meshdev"
 [[ -x "$meshdev" ]] || { echo "missing $meshdev (make -j2 meshdev in $build)" >&2; exit 1; }
 if ! command -v meshlabserver >/dev/null || ! command -v xvfb-run >/dev/null || ! command -v xauth >/dev/null; then
@@ -68,23 +72,27 @@ XML
 diag() { "$meshdev" info "$1" | awk '$1 == "bbox" {print $3; exit}'; }
 faces() { "$meshdev" info "$1" | awk '$1 == "triangles" {print $2; exit}'; }
 
-# Runs "$@" R times; prints "best_wall max_rss_mib".
+# Runs "$@" R times; prints "best_wall max_rss_mib" (wall to the microsecond from bash's clock
+# around /usr/bin/time, which gives the peak RSS; its own %e has 10 ms steps).
 best_of() {
-  local best="" rss=0 out
+  local best="" rss=0 out t0 t1 wall
   for ((i = 0; i < reps; i++)); do
-    /usr/bin/time -f "%e %M" -o "$tmp/time" "$@" >"$tmp/stdout" 2>"$tmp/stderr" || {
+    t0=$EPOCHREALTIME
+    /usr/bin/time -f "%M" -o "$tmp/time" "$@" >"$tmp/stdout" 2>"$tmp/stderr" || {
       echo "FAILED: $*" >&2; tail -5 "$tmp/stderr" >&2; return 1; }
+    t1=$EPOCHREALTIME
+    wall=$(awk -v a="$t0" -v b="$t1" 'BEGIN {printf "%.3f", b - a}')
     out=$(tail -1 "$tmp/time")
-    best=$(awk -v a="$best" -v b="${out% *}" 'BEGIN {print (a == "" || b < a) ? b : a}')
-    rss=$(awk -v a="$rss" -v b="${out#* }" 'BEGIN {print (b / 1024 > a) ? b / 1024 : a}')
+    best=$(awk -v a="$best" -v b="$wall" 'BEGIN {print (a == "" || b < a) ? b : a}')
+    rss=$(awk -v a="$rss" -v b="$out" 'BEGIN {print (b / 1024 > a) ? b / 1024 : a}')
   done
   echo "$best $rss"
 }
 
-header="a,b,a_faces,b_faces,samples_per_direction,repeats,meshdev_s,meshdev_rss_mib,meshlab_xvfb_s,meshlab_warm_s,meshlab_rss_mib,ratio_xvfb,ratio_warm,meshdev_mean_ab,meshlab_mean_ab,meshdev_mean_ba,meshlab_mean_ba,meshlab_samples_ab,load_start,load_end"
+header="a,b,a_faces,b_faces,samples_per_direction,repeats,meshdev_s,meshdev_rss_mib,meshlab_xvfb_s,meshlab_warm_s,meshlab_rss_mib,ratio_xvfb,ratio_warm,meshdev_mean_ab,meshlab_mean_ab,meshdev_mean_ba,meshlab_mean_ba,meshlab_samples_ab,load_start,load_end,meshdev_geometry_s,ratio_geometry_xvfb,ratio_geometry_warm"
 [[ -n "$csv" && ! -s "$csv" ]] && echo "$header" > "$csv"
-printf "%-22s %-22s %9s %9s %9s %9s %9s %8s %8s\n" A B "meshdev s" "ML xvfb s" "ML warm s" \
-  "MD MiB" "ML MiB" "x xvfb" "x warm"
+printf "%-22s %-22s %9s %9s %9s %9s %9s %9s %8s %8s %8s %8s\n" A B "meshdev s" "MD geom s" \
+  "ML xvfb s" "ML warm s" "MD MiB" "ML MiB" "x xvfb" "x warm" "geom xvf" "geom wrm"
 while (( $# )); do
   a=$1 b=$2; shift 2
   load0=$(cut -d' ' -f1 /proc/loadavg)
@@ -92,6 +100,8 @@ while (( $# )); do
   write_mlx "$tmp/hausdorff.mlx" "$n" "$maxdist"
   read -r md_s md_rss < <(best_of "$meshdev" compare "$a" "$b" --sampling montecarlo \
     --sample-count "$n" --threads 2 -q)
+  read -r mdg_s _ < <(best_of "$meshdev" compare "$a" "$b" --sampling montecarlo \
+    --sample-count "$n" --threads 2 -q --attributes geometry)
   read -r mlx_s ml_rss < <(best_of xvfb-run -a meshlabserver -i "$a" -i "$b" -s "$tmp/hausdorff.mlx")
   # warm: same command against the persistent X server (meshlabserver appends to its -l log)
   rm -f "$tmp/ml.log"
@@ -121,9 +131,11 @@ PY
   load1=$(cut -d' ' -f1 /proc/loadavg)
   rx=$(awk -v m="$md_s" -v l="$mlx_s" 'BEGIN {printf "%.2f", l / m}')
   rw=$(awk -v m="$md_s" -v l="$mlw_s" 'BEGIN {printf "%.2f", l / m}')
-  printf "%-22s %-22s %9.2f %9.2f %9.2f %9.0f %9.0f %8s %8s\n" "$(basename "$a")" "$(basename "$b")" \
-    "$md_s" "$mlx_s" "$mlw_s" "$md_rss" "$ml_rss" "$rx" "$rw"
+  gx=$(awk -v m="$mdg_s" -v l="$mlx_s" 'BEGIN {printf "%.2f", l / m}')
+  gw=$(awk -v m="$mdg_s" -v l="$mlw_s" 'BEGIN {printf "%.2f", l / m}')
+  printf "%-22s %-22s %9.3f %9.3f %9.3f %9.3f %9.0f %9.0f %8s %8s %8s %8s\n" "$(basename "$a")" \
+    "$(basename "$b")" "$md_s" "$mdg_s" "$mlx_s" "$mlw_s" "$md_rss" "$ml_rss" "$rx" "$rw" "$gx" "$gw"
   echo "    mean distance A->B: meshdev $md_ab, MeshLab $ml_ab; B->A: meshdev $md_ba, MeshLab $ml_ba;" \
        "MeshLab sampled ${ml_samples:-?} pts per direction; load $load0 -> $load1"
-  [[ -n "$csv" ]] && echo "$(basename "$a"),$(basename "$b"),$(faces "$a"),$(faces "$b"),$n,$reps,$md_s,$md_rss,$mlx_s,$mlw_s,$ml_rss,$rx,$rw,$md_ab,$ml_ab,$md_ba,$ml_ba,${ml_samples:-},$load0,$load1" >> "$csv"
+  [[ -n "$csv" ]] && echo "$(basename "$a"),$(basename "$b"),$(faces "$a"),$(faces "$b"),$n,$reps,$md_s,$md_rss,$mlx_s,$mlw_s,$ml_rss,$rx,$rw,$md_ab,$ml_ab,$md_ba,$ml_ba,${ml_samples:-},$load0,$load1,$mdg_s,$gx,$gw" >> "$csv"
 done

@@ -46,15 +46,21 @@ def peers(path):
 
 def meshlab(path):
     rows = list(csv.DictReader(open(path)))
+    geometry = bool(rows) and "meshdev_geometry_s" in rows[0]  # files before session 7 lack it
     print("| A | B | faces | samples/dir | meshdev s | MeshLab xvfb-run s | MeshLab warm s "
-          "| ratio (xvfb) | ratio (warm) | mean A→B meshdev / MeshLab | load |")
-    print("|---|---|---|---:|---:|---:|---:|---:|---:|---|---|")
+          "| ratio (xvfb) | ratio (warm) |"
+          + (" meshdev geometry-only s | ratio geometry-only (xvfb / warm) |" if geometry else "")
+          + " mean A→B meshdev / MeshLab | load |")
+    print("|---|---|---|---:|---:|---:|---:|---:|---:|" + ("---:|---:|" if geometry else "")
+          + "---|---|")
     for r in rows:
+        extra = (f" {float(r['meshdev_geometry_s']):.3f} | {r['ratio_geometry_xvfb']} / "
+                 f"{r['ratio_geometry_warm']} |" if geometry else "")
         print(f"| {r['a']} | {r['b']} | {int(r['a_faces']):,}/{int(r['b_faces']):,} "
-              f"| {int(r['samples_per_direction']):,} | {float(r['meshdev_s']):.2f} "
+              f"| {int(r['samples_per_direction']):,} | {float(r['meshdev_s']):.3f} "
               f"| {float(r['meshlab_xvfb_s']):.2f} | {float(r['meshlab_warm_s']):.2f} "
-              f"| {r['ratio_xvfb']} | {r['ratio_warm']} "
-              f"| {float(r['meshdev_mean_ab']):.6g} / {r['meshlab_mean_ab']} "
+              f"| {r['ratio_xvfb']} | {r['ratio_warm']} |" + extra
+              + f" {float(r['meshdev_mean_ab']):.6g} / {r['meshlab_mean_ab']} "
               f"| {r['load_start']}–{r['load_end']} |")
 
 
