@@ -169,6 +169,17 @@ TEST(Compare, OneThreadEqualsTwoThreads) {
     ASSERT_EQ(one.forward->deviations.values[m], two.forward->deviations.values[m]);
     ASSERT_EQ(one.backward->deviations.values[m], two.backward->deviations.values[m]);
     EXPECT_EQ(one.symmetric[m].mean, two.symmetric[m].mean);
+    // The statistics of 40,000 samples run in two blocks, on one thread and then on two.
+    for (const auto& [x, y] : {std::pair{&one.forward->stats[m], &two.forward->stats[m]},
+                               std::pair{&one.backward->stats[m], &two.backward->stats[m]}}) {
+      const double got1[] = {x->mean, x->variance, x->rms, x->p50, x->p90, x->p95, x->p99, x->max};
+      const double got2[] = {y->mean, y->variance, y->rms, y->p50, y->p90, y->p95, y->p99, y->max};
+      for (int k = 0; k < 8; ++k)
+        EXPECT_EQ(got1[k], got2[k]) << one.measures[m].name << " field " << k;
+      EXPECT_EQ(x->argmax, y->argmax);
+      EXPECT_EQ(x->histogram.counts, y->histogram.counts);
+      EXPECT_EQ(x->histogram.weight_fraction, y->histogram.weight_fraction);
+    }
   }
 }
 
