@@ -49,6 +49,9 @@ struct ChannelGroup {
   std::vector<std::size_t> measures;
   std::vector<MeasureKind> kinds;  // measures[k]'s kind
   FormSet forms;
+  // Every measure compares unit normals of a 3-D channel: the inline path (unit_normal and
+  // unit_normal_distance, which to_form and form_distance use, so the same numbers).
+  bool unit_normals = false;
 };
 
 std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const PreparedMesh& target,
@@ -70,6 +73,9 @@ std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const Pr
     it->kinds.push_back(measures[m].kind);
     it->forms.add(measures[m].kind);
   }
+  for (ChannelGroup& g : groups)
+    g.unit_normals = g.reference->dim == 3 &&
+                     std::all_of(g.kinds.begin(), g.kinds.end(), is_unit_normal_measure);
   return groups;
 }
 
@@ -225,6 +231,29 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
 
           for (const ChannelGroup& g : groups) {
             const int dim = g.reference->dim;
+            if (g.unit_normals) {  // normals: the same arithmetic as below, inline
+              interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
+              const Vec3 na = unit_normal({fa[0], fa[1], fa[2]});
+              auto normal_at = [&](const SurfaceHit& h) {
+                interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
+                return unit_normal({fb[0], fb[1], fb[2]});
+              };
+              if (ties.size() == 1) {
+                const Vec3 nb = normal_at(ties[0]);
+                for (std::size_t k = 0; k < g.measures.size(); ++k)
+                  out.values[g.measures[k]][i] = unit_normal_distance(g.kinds[k], na, nb);
+                continue;
+              }
+              best.assign(g.measures.size(), std::numeric_limits<double>::infinity());
+              for (const SurfaceHit& h : ties) {
+                const Vec3 nb = normal_at(h);
+                for (std::size_t k = 0; k < g.measures.size(); ++k)
+                  best[k] = std::min(best[k], unit_normal_distance(g.kinds[k], na, nb));
+              }
+              for (std::size_t k = 0; k < g.measures.size(); ++k)
+                out.values[g.measures[k]][i] = best[k];
+              continue;
+            }
             interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
             g.forms.transform(fa, dim, form_a, at_a);
             auto each_measure = [&](const SurfaceHit& h, auto&& use) {

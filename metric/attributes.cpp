@@ -11,7 +11,6 @@
 namespace meshdev {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxDim = 16;
 
 AttributeChannel computed_normals(const TriMesh& m, NormalWeighting w) {
@@ -44,9 +43,7 @@ void add_channel_measures(const AttributeChannel& c, std::vector<Measure>& out) 
 }
 
 Vec3 unit_or_zero(const double* v) {
-  const Vec3 n{v[0], v[1], v[2]};
-  const double len = norm(n);
-  return len > 0.0 ? (1.0 / len) * n : Vec3{};
+  return unit_normal({v[0], v[1], v[2]});
 }
 
 void add_cohen_measure(std::vector<Measure>& out) {
@@ -226,20 +223,8 @@ double form_distance(MeasureKind kind, const double* x, const double* y, int dim
   auto vec = [](const double* v) { return Vec3{v[0], v[1], v[2]}; };
   switch (kind) {
     case MeasureKind::kNormalEuclidean:
-      return norm(vec(x) - vec(y));
-    case MeasureKind::kNormalAngle: {
-      const Vec3 n = vec(x), m = vec(y);
-      if (n == Vec3{} || m == Vec3{}) return 90.0;  // undefined normal: no information
-      // From the chords of unit vectors: 2 asin(|n - m| / 2) up to 90 degrees, pi - 2 asin(|n +
-      // m| / 2) beyond, each well conditioned where it is used (Kahan, "How futile are mindless
-      // assessments of roundoff", 2006, sec. 12). As accurate as atan2(|n x m|, n.m) and cheaper
-      // in glibc (torus100k -> 10k, 1 thread: 3.74 -> 4.16 M samples/s, docs/performance.md §3);
-      // n and m are unit (the kUnit form), so the chord is at most 2.
-      const double chord = norm(n - m), across = norm(n + m);
-      const double radians =
-          chord <= across ? 2.0 * std::asin(0.5 * chord) : kPi - 2.0 * std::asin(0.5 * across);
-      return radians * (180.0 / kPi);
-    }
+    case MeasureKind::kNormalAngle:
+      return unit_normal_distance(kind, vec(x), vec(y));
     case MeasureKind::kColorDeltaE76:
     case MeasureKind::kTextureColorDeltaE76:
       return delta_e76(vec(x), vec(y));
