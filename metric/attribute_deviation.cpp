@@ -231,33 +231,22 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
 
           for (const ChannelGroup& g : groups) {
             const int dim = g.reference->dim;
-            if (g.unit_normals) {  // normals: the same arithmetic as below, inline
-              interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
-              const Vec3 na = unit_normal({fa[0], fa[1], fa[2]});
-              auto normal_at = [&](const SurfaceHit& h) {
-                interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
-                return unit_normal({fb[0], fb[1], fb[2]});
-              };
-              if (ties.size() == 1) {
-                const Vec3 nb = normal_at(ties[0]);
-                for (std::size_t k = 0; k < g.measures.size(); ++k)
-                  out.values[g.measures[k]][i] = unit_normal_distance(g.kinds[k], na, nb);
-                continue;
-              }
-              best.assign(g.measures.size(), std::numeric_limits<double>::infinity());
-              for (const SurfaceHit& h : ties) {
-                const Vec3 nb = normal_at(h);
-                for (std::size_t k = 0; k < g.measures.size(); ++k)
-                  best[k] = std::min(best[k], unit_normal_distance(g.kinds[k], na, nb));
-              }
-              for (std::size_t k = 0; k < g.measures.size(); ++k)
-                out.values[g.measures[k]][i] = best[k];
-              continue;
-            }
             interpolate(*g.reference, ref, s.face, s.bary, s.vertex, fa);
-            g.forms.transform(fa, dim, form_a, at_a);
+            // Unit normals (normal, normal angle) inline, with the arithmetic form_distance uses;
+            // every other channel through its forms.
+            Vec3 na;
+            if (g.unit_normals)
+              na = unit_normal({fa[0], fa[1], fa[2]});
+            else
+              g.forms.transform(fa, dim, form_a, at_a);
             auto each_measure = [&](const SurfaceHit& h, auto&& use) {
               interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
+              if (g.unit_normals) {
+                const Vec3 nb = unit_normal({fb[0], fb[1], fb[2]});
+                for (std::size_t k = 0; k < g.measures.size(); ++k)
+                  use(k, unit_normal_distance(g.kinds[k], na, nb));
+                return;
+              }
               g.forms.transform(fb, dim, form_b, at_b);
               for (std::size_t k = 0; k < g.measures.size(); ++k) {
                 const int f = g.forms.form_of[k];
