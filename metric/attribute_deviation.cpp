@@ -128,8 +128,9 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   const AttributeChannel* uv_ref = reference.channel("texcoord");
   const AttributeChannel* uv_tgt = target.channel("texcoord");
   std::unique_ptr<UvIndex> uv_index;
-  const double same_point = 1e-9 * bounding_box(tgt).diagonal();
+  double same_point = 0.0;  // Cohen's "same point" distance: 1e-9 of B's diagonal
   if (!cohen.empty()) {
+    same_point = 1e-9 * bounding_box(tgt).diagonal();
     assert(uv_ref != nullptr && uv_tgt != nullptr);
     uv_index = std::make_unique<UvIndex>(tgt, *uv_tgt);
     out.cohen_case.assign(n, 0);

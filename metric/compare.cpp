@@ -98,7 +98,7 @@ MeshSummary summarize(const TriMesh& mesh, const std::string& label) {
   s.faces = mesh.num_faces();
   s.polygons = mesh.source_polygons > 0 ? mesh.source_polygons : mesh.num_faces();
   s.area = surface_area(mesh);
-  s.box = bounding_box(mesh);
+  s.box = bounding_box(mesh, used);
   for (const AttributeChannel& c : mesh.channels) s.channels.push_back(c.name);
   return s;
 }

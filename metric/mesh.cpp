@@ -1,5 +1,6 @@
 #include "metric/mesh.h"
 
+#include <cassert>
 #include <cmath>
 
 #include "metric/errors.h"
@@ -37,12 +38,17 @@ double BoundingBox::diagonal() const {
 }
 
 BoundingBox bounding_box(const TriMesh& mesh) {
+  if (mesh.faces.empty()) return bounding_box(mesh, {});
+  return bounding_box(mesh, referenced_vertices(mesh));
+}
+
+BoundingBox bounding_box(const TriMesh& mesh, const std::vector<bool>& used) {
   BoundingBox box;
   if (mesh.faces.empty()) {
     for (const Vec3& p : mesh.positions) box.extend(p);
     return box;
   }
-  std::vector<bool> used = referenced_vertices(mesh);
+  assert(used.size() == mesh.positions.size());
   for (std::size_t v = 0; v < mesh.positions.size(); ++v)
     if (used[v]) box.extend(mesh.positions[v]);
   return box;

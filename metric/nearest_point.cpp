@@ -68,8 +68,8 @@ bool match_corners(const Vec3* source, const Vec3& a, const Vec3& b, const Vec3&
 }  // namespace
 
 FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres)
-    : mesh(&m), tie_relative(ties.relative) {
-  const double diag = bounding_box(m).diagonal();
+    : mesh(&m), box(bounding_box(m)), tie_relative(ties.relative) {
+  const double diag = box.diagonal();
   tie_absolute = ties.absolute_fraction * diag;
   // Sample points far from the origin carry the rounding of their absolute coordinates (about
   // 1e-16 of their magnitude), so the identical-triangle check must look that far. It is only a

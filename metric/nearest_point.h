@@ -107,6 +107,7 @@ namespace detail {
 // The shared per-face evaluation and tie arithmetic, so both indexes compute identical numbers.
 struct FaceEvaluator {
   const TriMesh* mesh = nullptr;
+  BoundingBox box;  // of the mesh's referenced vertices (bounding_box), for the indices' frames
   double tie_relative = 0;
   double tie_absolute = 0;    // absolute units
   double exact_check_sq = 0;  // hits closer than this are checked for an identical triangle

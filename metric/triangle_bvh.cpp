@@ -255,7 +255,7 @@ void TriangleBvh::build(int threads) {
   assert(n > 0);
 
   // The float frame: centred on the bounding box, the largest half extent scaled to 1.
-  const BoundingBox bbox = bounding_box(m);
+  const BoundingBox& bbox = eval_.box;
   origin_ = 0.5 * (bbox.min + bbox.max);
   const Vec3 half = 0.5 * (bbox.max - bbox.min);
   const double extent = std::max({half.x, half.y, half.z});

@@ -155,6 +155,26 @@ TEST(Compare, BvhAndBruteForceGiveIdenticalResults) {
       ASSERT_EQ(x->deviations.values[m], y->deviations.values[m]) << fast.measures[m].name;
 }
 
+// A mesh's summary box is that of the vertices its faces use (an unreferenced vertex far away
+// does not count), and a mesh without faces (a point cloud) is boxed by all its vertices.
+TEST(Compare, SummaryBoxHoldsTheReferencedVerticesOnly) {
+  TriMesh m = test::square();
+  m.positions.push_back({1e9, -1e9, 5});  // referenced by no face
+  const MeshSummary s = summarize(m, "m");
+  const BoundingBox box = bounding_box(test::square());
+  EXPECT_EQ(s.referenced_vertices, m.positions.size() - 1);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(s.box.min[k], box.min[k]) << k;
+    EXPECT_EQ(s.box.max[k], box.max[k]) << k;
+  }
+  TriMesh cloud;
+  cloud.positions = {{0, 0, 0}, {2, -1, 3}};
+  const MeshSummary c = summarize(cloud, "cloud");
+  EXPECT_EQ(c.box.max[0], 2.0);
+  EXPECT_EQ(c.box.min[1], -1.0);
+  EXPECT_EQ(c.box.max[2], 3.0);
+}
+
 TEST(Compare, OneThreadEqualsTwoThreads) {
   TriMesh a = test::icosphere(3), b = test::translated(test::icosphere(2), {0.01, 0, 0});
   CompareOptions o = all_sample_kinds();
