@@ -5,7 +5,7 @@ usage: sweep_cli_test.py MESHDEV MAKE_MESHES SCRATCH
 
 1. An uninterrupted sweep (the reference).
 2. The same sweep killed with SIGKILL 20 times, each run once it has written a line, at a random
-   moment (seeded) within half a job's mean time; resumed each time, then run to completion: the CSV
+   moment (seeded) within half a comparison's mean time; resumed each time, then run to completion: the CSV
    must equal the reference except for the timing columns, with no row missing or duplicated.
 3. guard: identical CSVs exit 0; a degraded value, a missing row and a failed status exit 1
    with a table.
@@ -77,18 +77,25 @@ def lines_on_disk(path):
 rng = random.Random(20240611)
 out = os.path.join(scratch, "killed")
 out_csv = os.path.join(out, "sweep.csv")
-job_time = duration / len(jobs) if jobs else 0.1
+# The kill window: half a comparison's mean time in the reference run. A group simplifies once
+# for all its ratios and then compares them one after the other, each writing its rows at once;
+# a window of half a whole job (simplification included) let a run finish the rest of its group
+# before the kill once comparisons got fast (9 of 20 runs were still alive to kill).
+metric_times = [float(r["metric_seconds"]) for r in rows(os.path.join(ref, "sweep.csv"))
+                if r.get("metric_seconds")]
+window = (sum(metric_times) / len(metric_times) if metric_times
+          else duration / max(len(jobs), 1)) / 2
 kills = 0
 for i in range(20):
     before = lines_on_disk(out_csv)
     proc = subprocess.Popen([meshdev, "sweep", config, "--out", out, "--no-progress", "-q"],
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    # Once this run has written a line, kill it at a random moment of half a job's mean time: each
-    # run makes progress and most are killed with work left, whatever the machine's speed.
+    # Once this run has written a line, kill it at a random moment of the window: each run makes
+    # progress (a job) and most are killed with work left, whatever the machine's speed.
     deadline = time.monotonic() + 30 * max(duration, 1.0)
     while proc.poll() is None and lines_on_disk(out_csv) == before and time.monotonic() < deadline:
         time.sleep(0.002)
-    time.sleep(rng.uniform(0.0, job_time / 2))
+    time.sleep(rng.uniform(0.0, window))
     if proc.poll() is None:
         proc.send_signal(signal.SIGKILL)
         kills += 1
