@@ -42,10 +42,6 @@ void add_channel_measures(const AttributeChannel& c, std::vector<Measure>& out) 
   }
 }
 
-Vec3 unit_or_zero(const double* v) {
-  return unit_normal({v[0], v[1], v[2]});
-}
-
 void add_cohen_measure(std::vector<Measure>& out) {
   out.push_back({"texcoord_cohen", MeasureKind::kCohenTexture, "texcoord",
                  "mesh units (Cohen: distance to the point of the other mesh with the same UV)"});
@@ -204,7 +200,7 @@ void to_form(ValueForm form, const double* x, int dim, double* out) {
   Vec3 v;
   switch (form) {
     case ValueForm::kUnit:
-      v = unit_or_zero(x);
+      v = unit_normal({x[0], x[1], x[2]});
       break;
     case ValueForm::kLab:
       v = srgb_to_lab({x[0], x[1], x[2]});

@@ -38,7 +38,6 @@ double BoundingBox::diagonal() const {
 }
 
 BoundingBox bounding_box(const TriMesh& mesh) {
-  if (mesh.faces.empty()) return bounding_box(mesh, {});
   return bounding_box(mesh, referenced_vertices(mesh));
 }
 

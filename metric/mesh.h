@@ -87,7 +87,8 @@ struct BoundingBox {
 
 // Box of the vertices used by a face (of all vertices if the mesh has no faces). O(V + F).
 BoundingBox bounding_box(const TriMesh& mesh);
-// The same box from `used` = referenced_vertices(mesh), for a caller that has it already. O(V).
+// The same box from `used` = referenced_vertices(mesh), for a caller that has it already (unread
+// for a mesh without faces). O(V).
 BoundingBox bounding_box(const TriMesh& mesh, const std::vector<bool>& used);
 
 // Area of triangle f (0 for a degenerate one). O(1).

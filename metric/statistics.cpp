@@ -55,8 +55,9 @@ int team_size(int threads, std::size_t blocks) {
 // The quantiles' bins: up to 65,536 bins over [lo, hi]; bin_of is monotone in the value (a
 // rounded difference, a positive scale, a truncation), so every value of a bin lies below every
 // value of the next, and a quantile is found by counting (or summing weights) bin by bin and
-// then selecting (or sorting) inside its bin only. Filled during the statistics' last full pass
-// (add), then find() makes one more pass over the values of the quantiles' bins. O(n) plus the
+// then selecting (or sorting) inside its bin only. Filled during the statistics' pass 2 (the
+// threads' counts by add_counts; weights by add on one thread, else by sum_weights), then find()
+// makes one more pass over the values of the quantiles' bins. O(n) plus the
 // size of those bins (all of n only when they hold nearly everything, e.g. a 0-heavy sample).
 class QuantileBins {
  public:
