@@ -60,6 +60,8 @@ struct BatchHits {
   std::size_t packet_queries = 0;  // how many were answered in packets (TriangleBvh), for tests
                                    // and benchmarks; the answers do not depend on it
   std::size_t block_packet_queries = 0;  // of those, how many in block packets
+  std::size_t guess_misses = 0;  // of the packets' queries, how many were farther from the target
+                                 // than their packet guessed (searched again in full)
 
   std::size_t size() const { return distance.size(); }
   const SurfaceHit* ties_begin(std::size_t i) const { return hits.data() + first[i]; }

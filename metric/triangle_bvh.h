@@ -37,6 +37,10 @@
 //        (fewer than 8 within a mean edge), 3 to 11 within two mean edges form a block packet:
 //        the centre query bounds the others as above, one traversal gathers the leaf blocks
 //        within reach, and each query searches those blocks as find() does, nearest box first.
+//        Where the last answers were near B (3 times their largest distance under half the
+//        packet's diagonal), a packet guesses instead: its reach is that multiple, there is no
+//        centre query, and any query whose tie limit comes out beyond the guess is searched
+//        again from the root (so a wrong guess costs time only, never an answer).
 //        Neither kind of packet changes any answer.
 // Ref: Wald, "On fast construction of SAH-based bounding volume hierarchies" (2007) for binning;
 //      Wald et al., "Getting rid of packets" (2008) and Embree for 4-wide nodes.
@@ -103,10 +107,13 @@ class TriangleBvh final : public NearestPointIndex {
   bool to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const;
   // Answers queries [base, base + n) of a batch as one packet (their frame coordinates and box
   // are in `scratch`) and returns how many it answered: n, or fewer once BatchHits::kMaxHits ties
-  // are held; 0, with nothing written, if the packet's reach holds too many faces.
+  // are held; 0, with nothing written, if the packet's reach holds too many faces. `guess` >= 0:
+  // the reach is that distance (absolute) and there is no centre query; each query whose tie
+  // limit comes out beyond it is answered by find() (scratch.misses counts them). < 0: the
+  // centre query is answered in full and bounds the others.
   std::size_t find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
-                          std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
-                          BatchHits& out) const;
+                          std::size_t n, std::uint32_t start_face, double guess,
+                          PacketScratch& scratch, BatchHits& out) const;
   // The reach of the identical-triangle check for a query with this hint (FaceEvaluator):
   // the search never narrows below it. 0 without a source triangle.
   double floor_of(const QueryHint& hint) const {
@@ -124,6 +131,11 @@ class TriangleBvh final : public NearestPointIndex {
   double packet_bounds(const Vec3* points, const QueryHint* hints, std::size_t base, std::size_t n,
                        std::uint32_t start_face, PacketScratch& scratch, double* limit,
                        double* reach) const;
+  // The bounds of a packet whose queries' distances are guessed (no centre query): every
+  // limit[k] is the guess (absolute), reach[k] that limit as a radius in the float frame.
+  // Returns the largest reach.
+  double guess_bounds(const QueryHint* hints, std::size_t base, std::size_t n, double guess,
+                      const PacketScratch& scratch, double* limit, double* reach) const;
   // Narrows the search's culling radii to the tie limit `limit_dist` (absolute, not squared);
   // they never grow.
   void narrow(Search& s, double limit_dist) const;
@@ -137,10 +149,12 @@ class TriangleBvh final : public NearestPointIndex {
   // Answers queries [base, base + n) of a batch (sparse on the target) as a block packet: the
   // centre query in full, then one traversal gathers the leaf blocks within reach of any query
   // (at most kMaxBlocks), and each other query searches those blocks as find() would, nearest
-  // box first, from the centre's upper bound. Returns as find_packet does.
+  // box first, from the centre's upper bound. With `guess` >= 0 the reach is the guess, there
+  // is no centre query, and each query starts from the bound given by the one before it and is
+  // checked as in find_packet. Returns as find_packet does.
   std::size_t find_block_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
-                                std::size_t n, std::uint32_t start_face, PacketScratch& scratch,
-                                BatchHits& out) const;
+                                std::size_t n, std::uint32_t start_face, double guess,
+                                PacketScratch& scratch, BatchHits& out) const;
   // Calls at_block(leaf block, its box lo, hi, the box [lo, hi] as splats, the squared reach)
   // for every leaf block whose box lies within `reach` (float frame) of the box [lo, hi], until
   // it returns false; returns false if it did.

@@ -462,6 +462,33 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
     }
 }
 
+// Block packets guess their queries' distances from the answers before them and search again in
+// full where a query is farther than guessed (TriangleBvh::find_batch). Here the distances jump:
+// runs of queries on the surface (distance about 0) with one query in 7 lifted off it by a
+// third of an edge along the radius, so guesses made after a run on the surface fail, and the
+// packets after too many failures answer their centre in full instead. Every answer must still
+// be the oracle's, in both kinds of packet.
+TEST(NearestPoint, BvhBlockPacketsWhoseGuessFailsEqualBruteForce) {
+  const TriMesh sphere = test::icosphere(3);
+  for (bool hinted : {false, true}) {
+    QueryStream qs = sparse_queries(sphere, 47, 0.0, hinted);
+    for (std::size_t k = 3; k < qs.points.size(); k += 7) {
+      qs.points[k] = (1.0 + 0.03 * (1.0 + static_cast<double>(k % 3))) * qs.points[k];
+      qs.hints[k] = QueryHint{};  // no longer on its source triangle
+    }
+    const std::string what = hinted ? "hinted" : "plain";
+    const TriangleBvh bvh(sphere);
+    BatchHits batch;
+    ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
+              qs.points.size());
+    EXPECT_GT(batch.block_packet_queries, qs.points.size() / 2) << what;
+    EXPECT_GT(batch.guess_misses, qs.points.size() / 40) << what;
+    EXPECT_LT(batch.guess_misses, batch.packet_queries / 4) << what;
+    expect_batch_is_the_oracle(sphere, qs, what);
+    if (HasFailure()) return;
+  }
+}
+
 // Runs `points` through TriangleBvh::find_batch on `m` and checks every answer against the
 // oracle; returns how many went through packets.
 std::size_t batch_packets_checked(const TriMesh& m, const std::vector<Vec3>& points,
