@@ -52,20 +52,22 @@ constexpr double kMinExtent = 1e-140;
 constexpr double kMaxExtent = 1e140;
 
 // Packets (find_batch): at most kPacketSize consecutive queries whose box diagonal is at most
-// kPacketExtent mean longest edges of the target's faces, if there are at least kMinPacket of
-// them and their reach holds at most kMaxCandidates faces. Where fewer are that close (samples
-// sparse on the target), a block packet: kMinBlockPacket to kMaxBlockPacket - 1 queries within
-// kBlockPacketExtent mean edges whose reach holds at most kMaxBlocks leaf blocks. The rest are
-// answered one by one. (Block packets of 2 / 3 mean edges cost 3,527 / 3,827 instructions per
-// sample on torus100k -> torus1m under callgrind, single queries 3,872.)
+// kPacketExtent mean longest edges of the target's faces (kFullPacketExtent once the packet holds
+// kFullPacket queries): at least kMinPacket of them make a packet of faces (if their reach holds
+// at most kMaxCandidates faces), kMinBlockPacket to kMinPacket - 1 (samples sparse on the target)
+// a block packet (if their reach holds at most kMaxBlocks leaf blocks). The rest are answered one
+// by one. With guessed reaches (below) the extent no longer widens the reach, and packets grew:
+// 1 / 2 mean edges (block packets 2) before, 3 with the cut at 2 from 16 queries now, +5 % on
+// torus100k -> torus1m and +15 % on buildings_s40k -> buildings (face order), within 1 % on the
+// dense pairs (peer_compare --threads 1, three interleaved runs; docs/performance.md §3).
 constexpr std::size_t kPacketSize = 64;
 constexpr std::size_t kMinPacket = 8;
-constexpr double kPacketExtent = 1.0;
+constexpr double kPacketExtent = 3.0;
+constexpr std::size_t kFullPacket = 16;
+constexpr double kFullPacketExtent = 2.0;
 constexpr std::size_t kMaxCandidates = 256;
 constexpr std::size_t kMinBlockPacket = 3;
-constexpr double kBlockPacketExtent = 2.0;
 constexpr std::size_t kMaxBlocks = 64;
-constexpr std::size_t kMaxBlockPacket = 12;
 // A packet's guess of its queries' distances: this factor times the largest distance of the
 // answers before it (used where it is less than half the packet's diagonal); the next packet
 // answers its centre in full instead where more than one query in kGuessMisses was farther than
@@ -554,7 +556,7 @@ void TriangleBvh::build(int threads) {
   // Summed in leaf order, so the packet extent does not depend on the thread count.
   const double mean_edge = std::accumulate(leaf_size.begin(), leaf_size.end(), 0.0) / n;
   packet_extent_ = kPacketExtent * mean_edge;
-  block_packet_extent_ = kBlockPacketExtent * mean_edge;
+  full_packet_extent_ = kFullPacketExtent * mean_edge;
   assert(depth_ <= kMaxBinaryDepth);
 }
 
@@ -828,18 +830,15 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     recent = d;
   };
   const double max_diag2 = packet_extent_ * packet_extent_;
-  const double block_diag2 = block_packet_extent_ * block_packet_extent_;
+  const double full_diag2 = full_packet_extent_ * full_packet_extent_;
   std::size_t i = 0;
   while (i < count && out.hits.size() < BatchHits::kMaxHits) {
-    // Grow a packet of consecutive queries while its box stays small: within the packet extent,
-    // or, where fewer than kMinPacket are that close, a block packet within the block packet
-    // extent. A block packet that reaches kMaxBlockPacket queries is dense after all (the close
-    // queries before it were cut off by a jump): those are answered on their own and a new packet
-    // starts after them.
-    std::size_t j = i, near_end = 0;
+    // Grow a packet of consecutive queries while its box stays within kPacketExtent mean edges
+    // (kFullPacketExtent once it holds kFullPacket queries). At least kMinPacket make a packet of
+    // faces; fewer, where queries are sparse on B, a block packet.
+    std::size_t j = i;
     float* lo = scratch.lo;
     float* hi = scratch.hi;
-    bool blocks = false, dense = false;
     for (; j < count && j - i < kPacketSize; ++j) {
       const std::size_t k = j - i;
       if (!to_frame(points[j], scratch.q[k], scratch.qf[k], scratch.slack[k])) break;
@@ -850,24 +849,14 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
         nhi[a] = k == 0 ? scratch.qf[k][a] : std::max(hi[a], scratch.qf[k][a]);
         diag2 += (static_cast<double>(nhi[a]) - nlo[a]) * (static_cast<double>(nhi[a]) - nlo[a]);
       }
-      if (diag2 > max_diag2 && !blocks) {
-        if (k >= kMinPacket) break;
-        blocks = true;
-        near_end = k;
-      }
-      if (diag2 > block_diag2) break;
-      if (blocks && k == kMaxBlockPacket) {
-        dense = true;
-        break;
-      }
+      if (diag2 > max_diag2 || (k >= kFullPacket && diag2 > full_diag2)) break;
       std::copy(nlo, nlo + 3, lo);
       std::copy(nhi, nhi + 3, hi);
     }
-    if (j == i) {  // beyond the float range, or alone in its box: on its own
+    if (j == i) {  // beyond the float range: on its own
       single(i++);
       continue;
     }
-    if (dense) j = i + near_end;
     // A packet guesses its queries' distances from the last answers (kGuessFactor times the
     // largest) where that is less than half its box's diagonal, the reach its centre's answer
     // would add, unless the guess failed for too many queries of the last packet.
@@ -878,9 +867,9 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     if (guess * scale_ > 0.5 * std::sqrt(diag2)) guess = -1.0;
     std::size_t answered = 0;
     scratch.misses = 0;
-    if (!blocks && j - i >= kMinPacket) {
+    if (j - i >= kMinPacket) {
       answered = find_packet(points, hints, i, j - i, previous, guess, scratch, out);
-    } else if (blocks && !dense && j - i >= kMinBlockPacket) {
+    } else if (j - i >= kMinBlockPacket) {
       answered = find_block_packet(points, hints, i, j - i, previous, guess, scratch, out);
       out.block_packet_queries += answered;
     }

@@ -26,17 +26,17 @@
 //   normalised before squaring, so nothing that matters underflows); slivers (kappa > 1e6),
 //   triangles under ~1e-5 of the mesh and queries beyond 1e12 mesh sizes are never culled by it;
 //   meshes under 1e-140 or over 1e140 in size are searched without culling (double underflow).
-// Batches (find_batch): consecutive queries within about kPacketExtent typical triangles of each
-//        other form a packet of up to 64. The packet's centre query runs as above and gives every
-//        other query an upper bound (triangle inequality); one traversal with the packet's box
-//        collects the faces within reach of any of them; each query then tests only those, with
-//        a float lower bound from precomputed unit plane and edge normals (one multiply-add per
-//        coordinate; SIMD kernels chosen at run time, metric/plane_bounds.h), and evaluates the
-//        survivors exactly, nearest bound first. Same answers as find(); packets whose reach
-//        holds too many faces fall back to find(). Where queries are sparse on the target
-//        (fewer than 8 within a mean edge), 3 to 11 within two mean edges form a block packet:
-//        the centre query bounds the others as above, one traversal gathers the leaf blocks
-//        within reach, and each query searches those blocks as find() does, nearest box first.
+// Batches (find_batch): consecutive queries within about kPacketExtent (3) typical triangles of
+//        each other (2 once there are 16) form a packet of up to 64. The packet's centre query
+//        runs as above and gives every other query an upper bound (triangle inequality); one
+//        traversal with the packet's box collects the faces within reach of any of them; each
+//        query then tests only those, with a float lower bound from precomputed unit plane and
+//        edge normals (one multiply-add per coordinate; SIMD kernels chosen at run time,
+//        metric/plane_bounds.h), and evaluates the survivors exactly, nearest bound first. Same
+//        answers as find(); packets whose reach holds too many faces fall back to find(). Runs
+//        of 3 to 7 (queries sparse on the target) form a block packet instead: the centre query
+//        bounds the others as above, one traversal gathers the leaf blocks within reach, and
+//        each query searches those blocks as find() does, nearest box first.
 //        Where the last answers were near B (3 times their largest distance under half the
 //        packet's diagonal), a packet guesses instead: its reach is that multiple, there is no
 //        centre query, and any query whose tie limit comes out beyond the guess is searched
@@ -177,8 +177,8 @@ class TriangleBvh final : public NearestPointIndex {
   bool cull_scale_ = true;       // false: the mesh is too small or large to cull (see kMinExtent)
   double corner_error_ = 0;      // max |float corner - exact corner| in the float frame
   double packet_extent_ = 0;     // largest packet box diagonal (float frame) for find_batch
-  double block_packet_extent_ = 0;  // the same for block packets
-  std::uint32_t root_ = 0;          // child ref of the root
+  double full_packet_extent_ = 0;  // the same for packets of at least kFullPacket queries
+  std::uint32_t root_ = 0;         // child ref of the root
   std::vector<Node> nodes_;
   std::vector<Leaf, RawStorageAllocator<Leaf>> leaves_;  // every field written by build()
   int depth_ = 0;

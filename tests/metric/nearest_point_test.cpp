@@ -443,8 +443,9 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
       BatchHits batch;
       ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
                 qs.points.size());
-      // Most of these queries must go through block packets, or this test checks nothing new.
-      EXPECT_GT(batch.block_packet_queries, qs.points.size() / 2) << what;
+      // A good part of these queries must go through block packets, or this test checks nothing
+      // new (a quarter: runs of 8 within three mean edges form packets of faces instead).
+      EXPECT_GT(batch.block_packet_queries, qs.points.size() / 4) << what;
       expect_batch_is_the_oracle(sphere, qs, what);
       if (HasFailure()) return;
     }
@@ -481,7 +482,7 @@ TEST(NearestPoint, BvhBlockPacketsWhoseGuessFailsEqualBruteForce) {
     BatchHits batch;
     ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
               qs.points.size());
-    EXPECT_GT(batch.block_packet_queries, qs.points.size() / 2) << what;
+    EXPECT_GT(batch.block_packet_queries, qs.points.size() / 4) << what;
     EXPECT_GT(batch.guess_misses, qs.points.size() / 40) << what;
     EXPECT_LT(batch.guess_misses, batch.packet_queries / 4) << what;
     expect_batch_is_the_oracle(sphere, qs, what);
