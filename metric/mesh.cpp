@@ -1,7 +1,11 @@
 #include "metric/mesh.h"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
 
 #include "metric/errors.h"
 
@@ -39,6 +43,28 @@ double BoundingBox::diagonal() const {
 
 BoundingBox bounding_box(const TriMesh& mesh) {
   return bounding_box(mesh, referenced_vertices(mesh));
+}
+
+BoundingBox corner_bounding_box(const TriMesh& mesh, int threads) {
+  if (mesh.faces.empty()) return bounding_box(mesh);
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  std::vector<BoundingBox> part(static_cast<std::size_t>(team));
+  const auto faces = static_cast<std::int64_t>(mesh.faces.size());
+#pragma omp parallel num_threads(team)
+  {
+    BoundingBox box;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t f = 0; f < faces; ++f)
+      for (std::uint32_t v : mesh.faces[static_cast<std::size_t>(f)]) box.extend(mesh.positions[v]);
+    part[static_cast<std::size_t>(omp_get_thread_num())] = box;
+  }
+  BoundingBox box;  // min and max per axis: the same whatever the split (extend ignores NaN)
+  for (const BoundingBox& b : part)
+    for (int k = 0; k < 3; ++k) {
+      box.min[k] = std::min(box.min[k], b.min[k]);
+      box.max[k] = std::max(box.max[k], b.max[k]);
+    }
+  return box;
 }
 
 BoundingBox bounding_box(const TriMesh& mesh, const std::vector<bool>& used) {

@@ -90,6 +90,9 @@ BoundingBox bounding_box(const TriMesh& mesh);
 // The same box from `used` = referenced_vertices(mesh), for a caller that has it already (unread
 // for a mesh without faces). O(V).
 BoundingBox bounding_box(const TriMesh& mesh, const std::vector<bool>& used);
+// The same box as bounding_box(mesh), from the faces' corners on `threads` OpenMP threads (0: the
+// default), for large meshes in a parallel phase. O(F / threads).
+BoundingBox corner_bounding_box(const TriMesh& mesh, int threads);
 
 // Area of triangle f (0 for a degenerate one). O(1).
 double face_area(const TriMesh& mesh, std::size_t f);
