@@ -1,7 +1,10 @@
 #include "metric/nearest_point.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "metric/errors.h"
@@ -68,16 +71,24 @@ bool match_corners(const Vec3* source, const Vec3& a, const Vec3& b, const Vec3&
 
 }  // namespace
 
-FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres)
-    : mesh(&m), box(bounding_box(m)), tie_relative(ties.relative) {
+FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres,
+                             int threads)
+    : mesh(&m), box(corner_bounding_box(m, threads)), tie_relative(ties.relative) {
   const double diag = box.diagonal();
   tie_absolute = ties.absolute_fraction * diag;
   // Sample points far from the origin carry the rounding of their absolute coordinates (about
   // 1e-16 of their magnitude), so the identical-triangle check must look that far. It is only a
-  // shortcut: the check itself requires bitwise-identical corners.
+  // shortcut: the check itself requires bitwise-identical corners. (A maximum: the same on any
+  // team; NaN coordinates are skipped as std::max skips them.)
   double magnitude = 0.0;
-  for (const Vec3& p : m.positions)
+  const auto vertices = static_cast<std::int64_t>(m.positions.size());
+#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) \
+    reduction(max                                                                   \
+              : magnitude) schedule(static)
+  for (std::int64_t v = 0; v < vertices; ++v) {
+    const Vec3& p = m.positions[static_cast<std::size_t>(v)];
     magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  }
   const double reach = 1e-9 * diag + 1e-14 * magnitude;
   exact_check_sq = reach * reach;
   if (!with_spheres) return;

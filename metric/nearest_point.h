@@ -123,7 +123,9 @@ struct FaceEvaluator {
   };
   std::vector<Sphere> spheres;
 
-  FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true);
+  // threads: OpenMP threads for the passes over the mesh (0 = OpenMP's default).
+  FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true,
+                int threads = 0);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
   // Tie limit (not squared) for a minimum distance `best` (not squared).
   double limit(double best) const { return best * (1.0 + tie_relative) + tie_absolute; }

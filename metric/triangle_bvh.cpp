@@ -247,7 +247,7 @@ std::uint64_t next_id() {
 }  // namespace
 
 TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
-    : eval_(target, ties, /*with_spheres=*/false),
+    : eval_(target, ties, /*with_spheres=*/false, threads),
       kernels_(&plane_kernels(simd_level())),
       id_(next_id()),
       check_reach_(std::sqrt(eval_.exact_check_sq)) {
@@ -284,23 +284,40 @@ void TriangleBvh::build(int threads) {
   // Binary SAH tree over the face boxes (float frame).
   std::unique_ptr<Prim[]> prims(new Prim[n]);
   std::unique_ptr<std::uint8_t[]> bin_at(new std::uint8_t[n]);  // bin of the face at a position
-#pragma omp parallel for num_threads(team) schedule(static)
-  for (std::int64_t f = 0; f < static_cast<std::int64_t>(n); ++f) {
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = frame[m.faces[f][0]][k];
-    for (int corner = 1; corner < 3; ++corner)
+  // The root's box and centre box are gathered here, per thread, and merged (min and max: the same
+  // for any team), instead of in a pass of the root's split on one thread.
+  std::vector<Bounds> part_bounds(static_cast<std::size_t>(team)), part_centres(part_bounds);
+#pragma omp parallel num_threads(team)
+  {
+    Bounds bounds, centres;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t f = 0; f < static_cast<std::int64_t>(n); ++f) {
+      double lo[3], hi[3];
+      for (int k = 0; k < 3; ++k) lo[k] = hi[k] = frame[m.faces[f][0]][k];
+      for (int corner = 1; corner < 3; ++corner)
+        for (int k = 0; k < 3; ++k) {
+          lo[k] = std::min(lo[k], frame[m.faces[f][corner]][k]);
+          hi[k] = std::max(hi[k], frame[m.faces[f][corner]][k]);
+        }
+      Prim& prim = prims[f];
       for (int k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], frame[m.faces[f][corner]][k]);
-        hi[k] = std::max(hi[k], frame[m.faces[f][corner]][k]);
+        prim.lo[k] = round_down(lo[k]);
+        prim.hi[k] = round_up(hi[k]);
       }
-    Prim& prim = prims[f];
-    for (int k = 0; k < 3; ++k) {
-      prim.lo[k] = round_down(lo[k]);
-      prim.hi[k] = round_up(hi[k]);
+      const auto face = static_cast<std::uint32_t>(f);
+      std::memcpy(&prim.lo[3], &face, sizeof face);
+      prim.hi[3] = 0.0f;
+      bounds.extend(F4::load(prim.lo), F4::load(prim.hi));
+      const F4 c = prim.centre2();
+      centres.extend(c, c);
     }
-    const auto face = static_cast<std::uint32_t>(f);
-    std::memcpy(&prim.lo[3], &face, sizeof face);
-    prim.hi[3] = 0.0f;
+    part_bounds[static_cast<std::size_t>(omp_get_thread_num())] = bounds;
+    part_centres[static_cast<std::size_t>(omp_get_thread_num())] = centres;
+  }
+  Bounds root_bounds, root_centres;
+  for (int t = 0; t < team; ++t) {
+    root_bounds.extend(part_bounds[static_cast<std::size_t>(t)]);
+    root_centres.extend(part_centres[static_cast<std::size_t>(t)]);
   }
   // The binary tree has at most 2n - 1 nodes; children are allocated in pairs from a counter, so
   // subtrees can be built in parallel (OpenMP tasks above kTaskBelow faces). The tree's shape
@@ -463,7 +480,7 @@ void TriangleBvh::build(int threads) {
   };
 #pragma omp parallel num_threads(team)
 #pragma omp single
-  split(split, 0, 0, n, 1, false, Bounds{}, Bounds{});
+  split(split, 0, 0, n, 1, true, root_bounds, root_centres);
 
   // Collapse into 4-wide nodes (recursive: the binary depth is bounded). Leaf blocks are numbered
   // here and filled below, in parallel.
