@@ -59,14 +59,16 @@ constexpr double kMaxExtent = 1e140;
 // by one. With guessed reaches (below) the extent no longer widens the reach, and packets grew:
 // 1 / 2 mean edges (block packets 2) before, 3 with the cut at 2 from 16 queries now, +5 % on
 // torus100k -> torus1m and +15 % on buildings_s40k -> buildings (face order), within 1 % on the
-// dense pairs (peer_compare --threads 1, three interleaved runs; docs/performance.md §3).
+// dense pairs (peer_compare --threads 1, three interleaved runs; docs/performance.md §3). The
+// minimum sizes went from 8 / 3 to 4 / 2 in the same way: buildings_s40k -> buildings +8 %,
+// torus100k -> torus1m and armadillo +2-3 %, the rest within 1 %.
 constexpr std::size_t kPacketSize = 64;
-constexpr std::size_t kMinPacket = 8;
+constexpr std::size_t kMinPacket = 4;
 constexpr double kPacketExtent = 3.0;
 constexpr std::size_t kFullPacket = 16;
 constexpr double kFullPacketExtent = 2.0;
 constexpr std::size_t kMaxCandidates = 256;
-constexpr std::size_t kMinBlockPacket = 3;
+constexpr std::size_t kMinBlockPacket = 2;
 constexpr std::size_t kMaxBlocks = 64;
 // A packet's guess of its queries' distances: this factor times the largest distance of the
 // answers before it (used where it is less than half the packet's diagonal); the next packet

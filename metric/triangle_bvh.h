@@ -34,7 +34,7 @@
 //        edge normals (one multiply-add per coordinate; SIMD kernels chosen at run time,
 //        metric/plane_bounds.h), and evaluates the survivors exactly, nearest bound first. Same
 //        answers as find(); packets whose reach holds too many faces fall back to find(). Runs
-//        of 3 to 7 (queries sparse on the target) form a block packet instead: the centre query
+//        of 2 or 3 (queries sparse on the target) form a block packet instead: the centre query
 //        bounds the others as above, one traversal gathers the leaf blocks within reach, and
 //        each query searches those blocks as find() does, nearest box first.
 //        Where the last answers were near B (3 times their largest distance under half the

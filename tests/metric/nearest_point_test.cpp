@@ -380,14 +380,15 @@ TEST(NearestPoint, BvhBatchEqualsBruteForceOnSoupsAndStressMeshes) {
 }
 
 // Query streams sparse on the target, as where a coarse mesh is sampled against a fine one: one
-// query per face of `m`, the faces taken in the Morton order of their centres, so consecutive
-// queries are about one face apart (too far for packets of faces, near enough for block
-// packets). Each query is at random barycentrics on its face (with `hinted`, carrying the face as
-// its source triangle), pushed off by `offset` in a random direction and by `outward` away from
-// the centre of the mesh's box (so queries far off the surface stay coherent); one in 9 is
-// exactly at a corner (a tie with every face around it).
+// query per `stride` faces of `m`, the faces taken in the Morton order of their centres, so
+// consecutive queries are about `stride` faces apart (at 1, runs of 4 or more form packets of
+// faces; at 4, most runs are too short for those and form block packets). Each query is at random
+// barycentrics on its face (with `hinted`, carrying the face as its source triangle), pushed off by
+// `offset` in a random direction and by `outward` away from the centre of the mesh's box (so
+// queries far off the surface stay coherent); one in 9 is exactly at a corner (a tie with every
+// face around it).
 QueryStream sparse_queries(const TriMesh& m, std::uint64_t seed, double offset, bool hinted,
-                           double outward = 0.0) {
+                           double outward = 0.0, std::size_t stride = 1) {
   std::vector<Vec3> centres;
   BoundingBox box;
   for (const Triangle& t : m.faces) {
@@ -405,7 +406,7 @@ QueryStream sparse_queries(const TriMesh& m, std::uint64_t seed, double offset, 
   qs.corners.reserve(3 * order.size());  // pointers into it are taken below
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(0.0, 1.0), s(-1.0, 1.0);
-  for (std::size_t k = 0; k < order.size(); ++k) {
+  for (std::size_t k = 0; k < order.size(); k += stride) {
     const Triangle& t = m.faces[order[k]];
     double a = u(rng), b = u(rng);
     if (a + b > 1) a = 1 - a, b = 1 - b;
@@ -417,9 +418,10 @@ QueryStream sparse_queries(const TriMesh& m, std::uint64_t seed, double offset, 
       p = p + (outward / norm(d)) * d;
     }
     QueryHint hint;
+    const std::size_t first_corner = qs.corners.size();
     for (int c = 0; c < 3; ++c) qs.corners.push_back(m.positions[t[c]]);
     if (hinted && offset == 0.0 && outward == 0.0) {
-      hint.source = &qs.corners[3 * k];
+      hint.source = &qs.corners[first_corner];
       hint.source_bary = {1.0 - a - b, a, b};
     }
     qs.points.push_back(p);
@@ -427,6 +429,8 @@ QueryStream sparse_queries(const TriMesh& m, std::uint64_t seed, double offset, 
   }
   return qs;
 }
+
+constexpr std::size_t kSparseStride = 4;  // one query per 4 faces: mostly block packets
 
 TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
   const TriMesh sphere = test::icosphere(3);
@@ -436,7 +440,7 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
                                               {2e-2, 0.0}, {0.0, 0.3},  {1e-3, 0.3}};
   for (const auto& [offset, outward] : pushes) {
     for (bool hinted : {false, true}) {
-      const QueryStream qs = sparse_queries(sphere, 43, offset, hinted, outward);
+      const QueryStream qs = sparse_queries(sphere, 43, offset, hinted, outward, kSparseStride);
       const std::string what = "offset " + std::to_string(offset) + " outward " +
                                std::to_string(outward) + (hinted ? " hinted" : "");
       const TriangleBvh bvh(sphere);
@@ -444,7 +448,7 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
       ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
                 qs.points.size());
       // A good part of these queries must go through block packets, or this test checks nothing
-      // new (a quarter: runs of 8 within three mean edges form packets of faces instead).
+      // new (a quarter: runs of 4 within three mean edges form packets of faces instead).
       EXPECT_GT(batch.block_packet_queries, qs.points.size() / 4) << what;
       expect_batch_is_the_oracle(sphere, qs, what);
       if (HasFailure()) return;
@@ -472,7 +476,7 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
 TEST(NearestPoint, BvhBlockPacketsWhoseGuessFailsEqualBruteForce) {
   const TriMesh sphere = test::icosphere(3);
   for (bool hinted : {false, true}) {
-    QueryStream qs = sparse_queries(sphere, 47, 0.0, hinted);
+    QueryStream qs = sparse_queries(sphere, 47, 0.0, hinted, 0.0, kSparseStride);
     for (std::size_t k = 3; k < qs.points.size(); k += 7) {
       qs.points[k] = (1.0 + 0.03 * (1.0 + static_cast<double>(k % 3))) * qs.points[k];
       qs.hints[k] = QueryHint{};  // no longer on its source triangle
