@@ -82,9 +82,8 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with
   // team; NaN coordinates are skipped as std::max skips them.)
   double magnitude = 0.0;
   const auto vertices = static_cast<std::int64_t>(m.positions.size());
-#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) \
-    reduction(max                                                                   \
-              : magnitude) schedule(static)
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for num_threads(team) reduction(max : magnitude) schedule(static)
   for (std::int64_t v = 0; v < vertices; ++v) {
     const Vec3& p = m.positions[static_cast<std::size_t>(v)];
     magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});

@@ -57,7 +57,7 @@ constexpr double kMaxExtent = 1e140;
 // at most kMaxCandidates faces), kMinBlockPacket to kMinPacket - 1 (samples sparse on the target)
 // a block packet (if their reach holds at most kMaxBlocks leaf blocks). The rest are answered one
 // by one. With guessed reaches (below) the extent no longer widens the reach, and packets grew:
-// 1 / 2 mean edges (block packets 2) before, 3 with the cut at 2 from 16 queries now, +5 % on
+// 1 mean edge (block packets 2) before, 3 with the cut at 2 from 16 queries now, +5 % on
 // torus100k -> torus1m and +15 % on buildings_s40k -> buildings (face order), within 1 % on the
 // dense pairs (peer_compare --threads 1, three interleaved runs; docs/performance.md §3). The
 // minimum sizes went from 8 / 3 to 4 / 2 in the same way: buildings_s40k -> buildings +8 %,
