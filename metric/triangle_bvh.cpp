@@ -57,11 +57,13 @@ constexpr double kMaxExtent = 1e140;
 // at most kMaxCandidates faces), kMinBlockPacket to kMinPacket - 1 (samples sparse on the target)
 // a block packet (if their reach holds at most kMaxBlocks leaf blocks). The rest are answered one
 // by one. With guessed reaches (below) the extent no longer widens the reach, and packets grew:
-// 1 mean edge (block packets 2) before, 3 with the cut at 2 from 16 queries now, +5 % on
-// torus100k -> torus1m and +15 % on buildings_s40k -> buildings (face order), within 1 % on the
-// dense pairs (peer_compare --threads 1, three interleaved runs; docs/performance.md §3). The
-// minimum sizes went from 8 / 3 to 4 / 2 in the same way: buildings_s40k -> buildings +8 %,
-// torus100k -> torus1m and armadillo +2-3 %, the rest within 1 %.
+// 1 mean edge (block packets 2) before, 3 with the cut at 2 from 16 queries now
+// (peer_compare --threads 1, M samples/s: torus100k -> torus1m 2.38-2.44 -> 2.67-2.78,
+// buildings_s40k -> buildings in face order 3.49-3.51 -> 4.43-4.54, torus1m -> 100k 3.95-4.10 ->
+// 4.46-4.47; 2 mean edges for both kinds was 2-4 % faster on the dense pairs but slower on the
+// sparse ones; docs/performance.md §3). The minimum sizes went from 8 / 3 to 4 / 2 in the same
+// way: buildings_s40k -> buildings 4.49-4.53 -> 4.85-4.93, torus100k -> torus1m and armadillo
+// +2-3 %, the rest within 1 %.
 constexpr std::size_t kPacketSize = 64;
 constexpr std::size_t kMinPacket = 4;
 constexpr double kPacketExtent = 3.0;
@@ -885,7 +887,6 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
       diag2 += (static_cast<double>(hi[a]) - lo[a]) * (static_cast<double>(hi[a]) - lo[a]);
     if (guess * scale_ > 0.5 * std::sqrt(diag2)) guess = -1.0;
     std::size_t answered = 0;
-    scratch.misses = 0;
     if (j - i >= kMinPacket) {
       answered = find_packet(points, hints, i, j - i, previous, guess, scratch, out);
     } else if (j - i >= kMinBlockPacket) {
@@ -1167,13 +1168,10 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
   scratch.misses = 0;
   const std::size_t c = guessed ? n : n / 2;  // the centre answered in full (n: none)
   double initial_limit[kPacketSize], initial_reach[kPacketSize];
-  double packet_reach = 0.0;
-  if (guessed) {
-    packet_reach = guess_bounds(hints, base, n, guess, scratch, initial_limit, initial_reach);
-  } else {
-    packet_reach =
-        packet_bounds(points, hints, base, n, start_face, scratch, initial_limit, initial_reach);
-  }
+  const double packet_reach =
+      guessed ? guess_bounds(hints, base, n, guess, scratch, initial_limit, initial_reach)
+              : packet_bounds(points, hints, base, n, start_face, scratch, initial_limit,
+                              initial_reach);
   if (!std::isfinite(packet_reach) ||
       !gather_blocks(scratch.lo, scratch.hi, packet_reach, scratch) || scratch.block_count == 0)
     return 0;

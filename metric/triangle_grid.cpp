@@ -26,7 +26,7 @@ std::size_t hash(std::uint64_t key, std::size_t mask) {
 }  // namespace
 
 TriangleGrid::TriangleGrid(const TriMesh& target, const TieOptions& ties, int threads)
-    : eval_(target, ties), bvh_(target, ties, threads) {
+    : eval_(target, ties, /*with_spheres=*/true, threads), bvh_(target, ties, threads) {
   const std::size_t faces = target.faces.size();
   const BoundingBox& box = eval_.box;
   const Vec3 extent = box.max - box.min;
