@@ -146,6 +146,14 @@ struct Bounds {
   }
 };
 
+// The bits of f as an integer of the same order (f not NaN; -0 and +0 equal).
+std::uint32_t sortable_bits(float f) {
+  f += 0.0f;  // -0 becomes +0
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
+}
+
 // The next float above f (f finite); std::nextafter without the library call.
 float next_up(float f) {
   if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
@@ -366,10 +374,21 @@ void TriangleBvh::build(int threads) {
       // Leaves are then full blocks of 4 except about one per subtree of kAlignBelow faces,
       // which keeps the structure near 55 bytes per face instead of about 77 (SAH alone leaves
       // blocks 2/3 full).
-      std::sort(first + begin, first + end, [&](const Prim& x, const Prim& y) {
-        const float kx = x.key(axis), ky = y.key(axis);
-        return kx < ky || (kx == ky && x.face() < y.face());
-      });
+      // (By key, then face: sorted as 64-bit integers, key bits above the face's, and the
+      // faces then moved once; sorting the 32-byte faces by their keys took twice as long.)
+      struct Order {
+        std::uint64_t key;
+        std::uint32_t at;
+      };
+      Order order[kAlignBelow];
+      Prim moved[kAlignBelow];
+      for (std::uint32_t i = 0; i < count; ++i) {
+        const Prim& prim = first[begin + i];
+        order[i] = {std::uint64_t{sortable_bits(prim.key(axis))} << 32 | prim.face(), i};
+        moved[i] = prim;
+      }
+      std::sort(order, order + count, [](const Order& x, const Order& y) { return x.key < y.key; });
+      for (std::uint32_t i = 0; i < count; ++i) first[begin + i] = moved[order[i].at];
       constexpr std::uint32_t kCuts = kAlignBelow / kLeafSize + 1;
       Bounds prefix[kCuts], prefix_centres[kCuts], suffix[kCuts], suffix_centres[kCuts];
       Bounds acc, acc_centres;
@@ -539,6 +558,20 @@ void TriangleBvh::build(int threads) {
   double corner_error2 = 0.0;                        // square roots are taken once, of the maxima
 #pragma omp parallel for num_threads(team) schedule(static) reduction(max : corner_error2)
   for (std::int64_t l = 0; l < leaf_count; ++l) {
+    // The faces' corners are read through two indirections, in no order the cache foresees:
+    // prefetched kAhead blocks ahead (face indices) and kAhead / 2 ahead (their positions).
+    constexpr std::int64_t kAhead = 16;
+    if (l + kAhead < leaf_count) {
+      const BinaryNode& ahead = tree[leaf_nodes[l + kAhead]];
+      for (std::uint32_t lane = 0; lane < ahead.count; ++lane)
+        __builtin_prefetch(&m.faces[prims[ahead.index + lane].face()]);
+    }
+    if (l + kAhead / 2 < leaf_count) {
+      const BinaryNode& ahead = tree[leaf_nodes[l + kAhead / 2]];
+      for (std::uint32_t lane = 0; lane < ahead.count; ++lane)
+        for (std::uint32_t v : m.faces[prims[ahead.index + lane].face()])
+          __builtin_prefetch(&frame[v]);
+    }
     const BinaryNode& b = tree[leaf_nodes[l]];
     Leaf& leaf = leaves_[l];
     double size = 0.0;
