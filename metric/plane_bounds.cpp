@@ -1,5 +1,7 @@
 #include "metric/plane_bounds.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -63,7 +65,58 @@ std::size_t survivors_baseline(const float* bound, std::size_t count, float cuto
   return n;
 }
 
-const PlaneKernels kBaseline{bounds_baseline, survivors_baseline};
+// Lane by lane, in double: the twin of the SIMD variants.
+void block_planes_baseline(const float corner[3][3][4], BlockPlanes& out) {
+  out = BlockPlanes{};
+  for (int lane = 0; lane < 4; ++lane) {
+    double v[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a) v[c][a] = corner[c][a][lane];
+    auto sub = [](const double* x, const double* y, double* out3) {
+      for (int a = 0; a < 3; ++a) out3[a] = x[a] - y[a];
+    };
+    auto cross = [](const double* x, const double* y, double* out3) {
+      out3[0] = x[1] * y[2] - x[2] * y[1];
+      out3[1] = x[2] * y[0] - x[0] * y[2];
+      out3[2] = x[0] * y[1] - x[1] * y[0];
+    };
+    auto dot = [](const double* x, const double* y) {
+      return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    };
+    double ab[3], ac[3], n[3];
+    sub(v[1], v[0], ab);
+    sub(v[2], v[0], ac);
+    cross(ab, ac, n);
+    const double n2 = dot(n, n);
+    // kappa <= kMaxCullKappa, squared (false for NaN).
+    if (!(n2 >= kMinCullNormal2 && dot(ab, ab) * dot(ac, ac) <= kMaxCullKappa * kMaxCullKappa * n2))
+      continue;
+    const double inv = 1.0 / std::sqrt(n2);
+    double unit[3];
+    for (int a = 0; a < 3; ++a) unit[a] = n[a] * inv;
+    const double d = dot(unit, v[0]);
+    double max_offset = std::fabs(d);
+    for (int a = 0; a < 3; ++a) out.row[kNx + a][lane] = static_cast<float>(unit[a]);
+    out.row[kD][lane] = static_cast<float>(d);
+    for (int e = 0; e < 3; ++e) {
+      double edge[3], m[3];
+      sub(v[(e + 1) % 3], v[e], edge);
+      cross(edge, unit, m);
+      const double inv_m = 1.0 / std::sqrt(dot(m, m));
+      for (int a = 0; a < 3; ++a) m[a] *= inv_m;
+      const double md = dot(m, v[e]);
+      for (int a = 0; a < 3; ++a) out.row[kM0x + 4 * e + a][lane] = static_cast<float>(m[a]);
+      out.row[kMd0 + 4 * e][lane] = static_cast<float>(md);
+      max_offset = std::max(max_offset, std::fabs(md));
+    }
+    float f = static_cast<float>(max_offset);  // rounded up
+    if (static_cast<double>(f) < max_offset)
+      f = std::nextafter(f, std::numeric_limits<float>::infinity());
+    out.max_offset[lane] = f;
+  }
+}
+
+const PlaneKernels kBaseline{bounds_baseline, survivors_baseline, block_planes_baseline};
 
 bool cpu_has(SimdLevel level) {
 #if defined(MESHDEV_X86_KERNELS)

@@ -22,6 +22,21 @@ constexpr std::size_t kPlaneLanes = 16;  // stride must be a multiple of this (w
 
 enum class SimdLevel { kBaseline, kAvx2, kAvx512 };
 
+// Triangles the bounds must never cull (their planes are all zeros, a bound of 0): slivers, whose
+// conditioning kappa = |ab| |ac| / |ab x ac| exceeds kMaxCullKappa, and triangles with
+// |ab x ac|^2 < kMinCullNormal2 (float frame, where the target spans [-1, 1]). The rounding
+// analysis of the bounds (docs/metric.md) holds for the others.
+constexpr double kMaxCullKappa = 1e6;
+constexpr double kMinCullNormal2 = 1e-20;
+
+// The planes (the rows above) of the up to four triangles of a BVH leaf block, by lane: computed
+// in double from the block's float corners and rounded to float (max_offset rounded up: the
+// largest |d|, |md_e|). Lanes never to be culled, empty lanes included: all zeros.
+struct BlockPlanes {
+  float row[kPlaneRows][4];  // [PlaneRow][lane]
+  float max_offset[4];
+};
+
 // The kernels of one instruction set.
 struct PlaneKernels {
   // bound[i] = max(h^2 + max(out_0, out_1, out_2, 0)^2, 0), the square of a lower bound on the
@@ -35,6 +50,12 @@ struct PlaneKernels {
   // order, and returns how many. bound: as written by `bounds` of the same kernels. O(count).
   std::size_t (*survivors)(const float* bound, std::size_t count, float cutoff, std::size_t skip,
                            std::uint32_t* out);
+  // The planes of the four triangles whose corners are corner[corner][axis][lane] (float frame):
+  // the normal n = ab x ac made unit, d = n.a, and per edge e (a->b, b->c, c->a) the unit
+  // m_e = e x n and md_e = m_e.(its first corner); all in double, four lanes at once where the
+  // instruction set allows. Every variant rounds each double operation once or less (FMA), so
+  // the rows differ between them only in the last float bit, within the caller's margin. O(1).
+  void (*block_planes)(const float corner[3][3][4], BlockPlanes& out);
 };
 
 // The kernels' instruction set: AVX2 if this build has it and the CPU and OS support it, else
@@ -53,6 +74,8 @@ namespace detail {
 // (plane_bounds_avx2.cpp, plane_bounds_avx512.cpp); only called after the CPU check.
 extern const PlaneKernels kPlaneKernelsAvx2;
 extern const PlaneKernels kPlaneKernelsAvx512;
+// The AVX2 + FMA block planes, which the AVX-512 kernels share (every AVX-512F CPU has both).
+void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out);
 }  // namespace detail
 
 }  // namespace meshdev

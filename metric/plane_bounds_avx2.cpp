@@ -63,10 +63,78 @@ std::size_t survivors_avx2(const float* bound, std::size_t count, float cutoff, 
   return n;
 }
 
+// Four doubles per register: the lanes of a block at once.
+struct D3 {
+  __m256d x, y, z;
+};
+inline D3 sub(const D3& a, const D3& b) {
+  return {_mm256_sub_pd(a.x, b.x), _mm256_sub_pd(a.y, b.y), _mm256_sub_pd(a.z, b.z)};
+}
+inline D3 scale(const D3& a, __m256d s) {
+  return {_mm256_mul_pd(a.x, s), _mm256_mul_pd(a.y, s), _mm256_mul_pd(a.z, s)};
+}
+inline __m256d dot(const D3& a, const D3& b) {
+  return _mm256_fmadd_pd(a.z, b.z, _mm256_fmadd_pd(a.y, b.y, _mm256_mul_pd(a.x, b.x)));
+}
+inline D3 cross(const D3& a, const D3& b) {
+  return {_mm256_fmsub_pd(a.y, b.z, _mm256_mul_pd(a.z, b.y)),
+          _mm256_fmsub_pd(a.z, b.x, _mm256_mul_pd(a.x, b.z)),
+          _mm256_fmsub_pd(a.x, b.y, _mm256_mul_pd(a.y, b.x))};
+}
+// Rounded to float; lanes outside `keep` are 0.
+inline void put(float* out, __m256d v, __m256d keep) {
+  _mm_storeu_ps(out, _mm256_cvtpd_ps(_mm256_and_pd(v, keep)));
+}
+
 }  // namespace
 
 namespace detail {
-const PlaneKernels kPlaneKernelsAvx2{bounds_avx2, survivors_avx2};
+
+void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out) {
+  D3 v[3];
+  for (int c = 0; c < 3; ++c)
+    v[c] = {_mm256_cvtps_pd(_mm_loadu_ps(corner[c][0])),
+            _mm256_cvtps_pd(_mm_loadu_ps(corner[c][1])),
+            _mm256_cvtps_pd(_mm_loadu_ps(corner[c][2]))};
+  const D3 ab = sub(v[1], v[0]), ac = sub(v[2], v[0]);
+  const D3 n = cross(ab, ac);
+  const __m256d n2 = dot(n, n);
+  // kappa <= kMaxCullKappa, squared, and |n|^2 >= kMinCullNormal2 (false for NaN).
+  const __m256d keep = _mm256_and_pd(
+      _mm256_cmp_pd(n2, _mm256_set1_pd(kMinCullNormal2), _CMP_GE_OQ),
+      _mm256_cmp_pd(_mm256_mul_pd(dot(ab, ab), dot(ac, ac)),
+                    _mm256_mul_pd(_mm256_set1_pd(kMaxCullKappa * kMaxCullKappa), n2), _CMP_LE_OQ));
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  const D3 unit = scale(n, _mm256_div_pd(one, _mm256_sqrt_pd(n2)));
+  const __m256d d = dot(unit, v[0]);
+  __m256d max_offset = _mm256_andnot_pd(sign, d);
+  put(out.row[kNx], unit.x, keep);
+  put(out.row[kNy], unit.y, keep);
+  put(out.row[kNz], unit.z, keep);
+  put(out.row[kD], d, keep);
+  for (int e = 0; e < 3; ++e) {
+    const D3 m0 = cross(sub(v[(e + 1) % 3], v[e]), unit);
+    const D3 m = scale(m0, _mm256_div_pd(one, _mm256_sqrt_pd(dot(m0, m0))));
+    const __m256d md = dot(m, v[e]);
+    put(out.row[kM0x + 4 * e], m.x, keep);
+    put(out.row[kM0y + 4 * e], m.y, keep);
+    put(out.row[kM0z + 4 * e], m.z, keep);
+    put(out.row[kMd0 + 4 * e], md, keep);
+    max_offset = _mm256_max_pd(max_offset, _mm256_andnot_pd(sign, md));
+  }
+  // Rounded up: one float step up where rounding to nearest went below (>= 0, so +1 on the bits).
+  max_offset = _mm256_and_pd(max_offset, keep);
+  const __m128 f = _mm256_cvtpd_ps(max_offset);
+  const __m256i below64 =
+      _mm256_castpd_si256(_mm256_cmp_pd(_mm256_cvtps_pd(f), max_offset, _CMP_LT_OQ));
+  const __m128i below = _mm256_castsi256_si128(  // each lane's low half: 0 or -1
+      _mm256_permutevar8x32_epi32(below64, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6)));
+  _mm_storeu_ps(out.max_offset, _mm_castsi128_ps(_mm_sub_epi32(_mm_castps_si128(f), below)));
+}
+
+const PlaneKernels kPlaneKernelsAvx2{bounds_avx2, survivors_avx2, block_planes_avx2};
+
 }  // namespace detail
 
 }  // namespace meshdev

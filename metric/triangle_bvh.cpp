@@ -38,12 +38,13 @@ constexpr double kUnit = 0x1p-24;  // unit roundoff of float (round to nearest)
 // Margin constant of the triangle bound (see the header and docs/metric.md): the first-order
 // rounding analysis gives about 20 u (1 + kappa) (|ap| + |bp| + |cp|); 64 leaves a factor 3.
 constexpr double kMarginConstant = 64.0;
-constexpr double kMaxKappa = 1e6;  // slivers beyond this are never culled by the bound
-// |ab x ac|^2 below this (float frame, where B spans [-1, 1]): never culled by the triangle
-// bound. Keeps |n| >= 1e-10 and |e| |n| >= 3e-21, so a float underflow anywhere in the bound
-// (absolute error <= 2^-149 per operation, divided by at most |e| |n|) stays ~1e-24, far below
-// the margin (>= 64 u 2 |e| >= 3e-16).
-constexpr double kMinNormal2 = 1e-20;
+// Slivers beyond kappa = kMaxKappa are never culled by the bound, nor triangles with
+// |ab x ac|^2 below kMinNormal2 (float frame, where B spans [-1, 1]). That keeps |n| >= 1e-10 and
+// |e| |n| >= 3e-21, so a float underflow anywhere in the bound (absolute error <= 2^-149 per
+// operation, divided by at most |e| |n|) stays ~1e-24, far below the margin (>= 64 u 2 |e| >=
+// 3e-16). The packets' planes (metric/plane_bounds.h) share both limits.
+constexpr double kMaxKappa = kMaxCullKappa;
+constexpr double kMinNormal2 = kMinCullNormal2;
 constexpr double kMaxQuery = 1e12;  // queries farther out (float frame) are never culled
 // Meshes whose largest half extent is outside [kMinExtent, kMaxExtent] (absolute units) are never
 // culled: their squared distances leave double's normal range (found by fuzz_nearest_point:
@@ -800,7 +801,7 @@ struct TriangleBvh::PacketScratch {
   double q[kPacketSize][3];
   float qf[kPacketSize][3];
   double slack[kPacketSize];
-  std::vector<std::uint32_t> faces;
+  std::vector<std::uint32_t> slots;  // the candidates: leaf slots (block << 2 | lane)
   // The candidates' supporting planes in the float frame, as kPlaneRows rows of `stride` floats
   // (metric/plane_bounds.h): unit normal n and offset d (h = n.p - d is the signed distance to
   // the plane), and per edge the outward unit normal m_e within the plane and its offset
@@ -811,10 +812,10 @@ struct TriangleBvh::PacketScratch {
   std::vector<float> bound;
   std::vector<std::uint32_t> survivors;
   std::vector<SurfaceHit> ties, center_ties;
-  double center_distance = 0;     // the packet's centre query's answer (packet_bounds)
-  std::vector<FacePlanes> cache;  // 2^kCacheBits slots, allocated with the first packet
-  std::uint64_t cache_owner = 0;  // the TriangleBvh::id_ whose planes the cache holds
-  float lo[3], hi[3];             // the packet's box (float frame), set while it grows
+  double center_distance = 0;       // the packet's centre query's answer (packet_bounds)
+  std::vector<CachedPlanes> cache;  // 2^kCacheBits slots, allocated with the first packet
+  std::uint64_t cache_owner = 0;    // the TriangleBvh::id_ whose planes the cache holds
+  float lo[3], hi[3];               // the packet's box (float frame), set while it grows
   // Block packets: the leaf blocks within the packet's reach and their boxes (float frame),
   // rows padded to a multiple of 4 lanes.
   std::size_t block_count = 0;
@@ -824,35 +825,16 @@ struct TriangleBvh::PacketScratch {
   std::size_t misses = 0;  // queries of the last packet farther from B than its guess
 };
 
-const TriangleBvh::FacePlanes& TriangleBvh::face_planes(std::uint32_t face,
-                                                        PacketScratch& scratch) const {
+const BlockPlanes& TriangleBvh::block_planes(std::uint32_t block, PacketScratch& scratch) const {
   if (scratch.cache.empty()) scratch.cache.resize(std::size_t{1} << kCacheBits);
-  FacePlanes& f = scratch.cache[(face * 0x9E3779B1u) >> (32 - kCacheBits)];
-  if (f.face == face) return f;
-  f = FacePlanes{};
-  f.face = face;
-  const TriMesh& mesh = *eval_.mesh;
-  Vec3 v[3];
-  for (int corner = 0; corner < 3; ++corner)
-    v[corner] = scale_ * (mesh.positions[mesh.faces[face][corner]] - origin_);
-  const Vec3 ab = v[1] - v[0], ac = v[2] - v[0];
-  if (!std::isfinite(cull_kappa(ab, ac))) return f;  // never culled: all zeros
-  const Vec3 nrm = cross(ab, ac);
-  const Vec3 unit = (1.0 / norm(nrm)) * nrm;
-  const double offset = dot(unit, v[0]);
-  double max_offset = std::fabs(offset);
-  for (int a = 0; a < 3; ++a) f.n[a] = static_cast<float>(unit[a]);
-  f.d = static_cast<float>(offset);
-  for (int e = 0; e < 3; ++e) {
-    const Vec3 outward = cross(v[(e + 1) % 3] - v[e], unit);  // in the plane
-    const Vec3 out_unit = (1.0 / norm(outward)) * outward;
-    const double out_offset = dot(out_unit, v[e]);
-    for (int a = 0; a < 3; ++a) f.m[e][a] = static_cast<float>(out_unit[a]);
-    f.md[e] = static_cast<float>(out_offset);
-    max_offset = std::max(max_offset, std::fabs(out_offset));
+  CachedPlanes& c = scratch.cache[(block * 0x9E3779B1u) >> (32 - kCacheBits)];
+  if (c.block != block) {
+    // From the block's float corners (in cache, unlike the mesh's): the bounds are then those of
+    // the float triangles, within corner_error_ of the faces, which every reach includes.
+    kernels_->block_planes(leaves_[block].corner, c.planes);
+    c.block = block;
   }
-  f.max_offset = round_up(max_offset);
-  return f;
+  return c.planes;
 }
 
 std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
@@ -883,6 +865,9 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     previous = scratch.ties.front().face;
     recent = d;
   };
+  // Packets of faces name them by leaf slot, block << 2 | lane, in 32 bits (short of a billion
+  // faces).
+  const bool slots_fit = leaves_.size() <= (kNoFace >> 2);
   const double max_diag2 = packet_extent_ * packet_extent_;
   const double full_diag2 = full_packet_extent_ * full_packet_extent_;
   std::size_t i = 0;
@@ -920,7 +905,7 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
       diag2 += (static_cast<double>(hi[a]) - lo[a]) * (static_cast<double>(hi[a]) - lo[a]);
     if (guess * scale_ > 0.5 * std::sqrt(diag2)) guess = -1.0;
     std::size_t answered = 0;
-    if (j - i >= kMinPacket) {
+    if (j - i >= kMinPacket && slots_fit) {
       answered = find_packet(points, hints, i, j - i, previous, guess, scratch, out);
     } else if (j - i >= kMinBlockPacket) {
       answered = find_block_packet(points, hints, i, j - i, previous, guess, scratch, out);
@@ -988,8 +973,8 @@ bool TriangleBvh::visit_blocks(const float lo[3], const float hi[3], double reac
 }
 
 bool TriangleBvh::gather(const float lo[3], const float hi[3], double reach, std::size_t max_faces,
-                         std::vector<std::uint32_t>& faces) const {
-  faces.clear();
+                         std::vector<std::uint32_t>& slots) const {
+  slots.clear();
   return visit_blocks(lo, hi, reach,
                       [&](std::uint32_t block, const float*, const float*, const F4 qlo[3],
                           const F4 qhi[3], F4 limit2) {
@@ -1006,8 +991,8 @@ bool TriangleBvh::gather(const float lo[3], const float hi[3], double reach, std
                           const int lane = __builtin_ctz(static_cast<unsigned>(keep));
                           keep &= keep - 1;
                           if (leaf.face[lane] == kNoFace) continue;
-                          if (faces.size() == max_faces) return false;
-                          faces.push_back(leaf.face[lane]);
+                          if (slots.size() == max_faces) return false;
+                          slots.push_back(block << 2 | static_cast<std::uint32_t>(lane));
                         }
                         return true;
                       });
@@ -1096,25 +1081,31 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     return frame_reach(limit, floor_of(hint_of(k)), scratch.slack[k]);
   };
   if (!std::isfinite(packet_reach) ||
-      !gather(scratch.lo, scratch.hi, packet_reach, kMaxCandidates, scratch.faces) ||
-      scratch.faces.empty())
+      !gather(scratch.lo, scratch.hi, packet_reach, kMaxCandidates, scratch.slots) ||
+      scratch.slots.empty())
     return 0;
 
   // The candidates' planes, from the cache (consecutive packets share most of their faces).
-  const std::size_t candidates = scratch.faces.size();
+  const std::size_t candidates = scratch.slots.size();
   const std::size_t stride = (candidates + kPlaneLanes - 1) / kPlaneLanes * kPlaneLanes;
   scratch.rows.resize(kPlaneRows * stride);
   float* rows = scratch.rows.data();
   float max_offset = 0.0f;
-  for (std::size_t idx = 0; idx < candidates; ++idx) {
-    const FacePlanes& f = face_planes(scratch.faces[idx], scratch);
-    max_offset = std::max(max_offset, f.max_offset);
-    for (int a = 0; a < 3; ++a) rows[(kNx + a) * stride + idx] = f.n[a];
-    rows[kD * stride + idx] = f.d;
-    for (int e = 0; e < 3; ++e) {
-      for (int a = 0; a < 3; ++a) rows[(kM0x + 4 * e + a) * stride + idx] = f.m[e][a];
-      rows[(kMd0 + 4 * e) * stride + idx] = f.md[e];
+  for (std::size_t idx = 0; idx < candidates;) {
+    const std::uint32_t slot = scratch.slots[idx];
+    const BlockPlanes& f = block_planes(slot >> 2, scratch);
+    // A whole block in lane order (gather's usual output): four lanes per row at once.
+    if ((slot & 3) == 0 && idx + 4 <= candidates && scratch.slots[idx + 3] == slot + 3) {
+      for (int r = 0; r < kPlaneRows; ++r)
+        std::memcpy(rows + r * stride + idx, f.row[r], sizeof f.row[r]);
+      for (int lane = 0; lane < 4; ++lane) max_offset = std::max(max_offset, f.max_offset[lane]);
+      idx += 4;
+      continue;
     }
+    const std::uint32_t lane = slot & 3;
+    for (int r = 0; r < kPlaneRows; ++r) rows[r * stride + idx] = f.row[r][lane];
+    max_offset = std::max(max_offset, f.max_offset[lane]);
+    ++idx;
   }
   for (int r = 0; r < kPlaneRows; ++r)  // padding lanes: bound +inf
     std::fill(rows + r * stride + candidates, rows + (r + 1) * stride, r == kD ? -kInf : 0.0f);
@@ -1148,7 +1139,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     // The face of smallest bound first: its exact distance gives the tie limit, usually final.
     std::vector<SurfaceHit>& ties = scratch.ties;
     ties.clear();
-    SurfaceHit first = eval_.evaluate(p, scratch.faces[first_idx], hint);
+    SurfaceHit first = eval_.evaluate(p, face_of(scratch.slots[first_idx]), hint);
     double best_sq = first.sq_distance, best = std::sqrt(best_sq);
     double limit = eval_.limit(best), limit_sq = limit * limit;  // = eval_.limit_sq(best_sq)
     ties.push_back(first);
@@ -1162,7 +1153,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       const std::uint32_t idx = scratch.survivors[pick];
       if (scratch.bound[idx] > cutoff) break;
       scratch.survivors[pick] = scratch.survivors[--left];
-      const SurfaceHit h = eval_.evaluate(p, scratch.faces[idx], hint);
+      const SurfaceHit h = eval_.evaluate(p, face_of(scratch.slots[idx]), hint);
       if (h.sq_distance > limit_sq) continue;
       if (h.sq_distance < best_sq) {
         best_sq = h.sq_distance;

@@ -85,21 +85,14 @@ class TriangleBvh final : public NearestPointIndex {
     std::uint32_t face[4];
   };
 
-  // A face's supporting plane in the float frame, computed in double and rounded to float:
-  // unit normal n and offset d (n.p - d is the signed distance to the plane), and per edge the
-  // outward unit normal m_e in the plane and its offset (m_e.p - md_e is the distance beyond the
-  // edge's line). All zeros (a bound of 0: never culled) for slivers and tiny faces.
-  struct FacePlanes {
-    float n[3] = {0, 0, 0};
-    float d = 0;
-    float m[3][3] = {};
-    float md[3] = {0, 0, 0};
-    float max_offset = 0;  // max |d|, |md_e|, rounded up
-    std::uint32_t face = kNoFace;
+  // A leaf block's planes in a packet's cache (block kNoFace: an empty slot).
+  struct CachedPlanes {
+    BlockPlanes planes;
+    std::uint32_t block = kNoFace;
   };
   struct PacketScratch;
   struct Search;                         // one query's search state (triangle_bvh.cpp)
-  static constexpr int kCacheBits = 12;  // plane cache slots of a batch: 2^kCacheBits
+  static constexpr int kCacheBits = 10;  // plane cache slots (leaf blocks) of a batch: 2^kCacheBits
 
   void build(int threads);
   // The query in the float frame: coordinates, their float rounding, and the culling slack
@@ -144,8 +137,10 @@ class TriangleBvh final : public NearestPointIndex {
   // Tests the (up to) four triangles of a leaf block: a float lower bound per triangle, then
   // the survivors exactly, nearest bound first.
   void search_leaf(const Leaf& leaf, Search& s) const;
-  // The planes of `face`, from the batch's cache or computed into it.
-  const FacePlanes& face_planes(std::uint32_t face, PacketScratch& scratch) const;
+  // The planes of leaf block `block`, from the batch's cache or computed into it.
+  const BlockPlanes& block_planes(std::uint32_t block, PacketScratch& scratch) const;
+  // The face in leaf slot `slot` (block << 2 | lane).
+  std::uint32_t face_of(std::uint32_t slot) const { return leaves_[slot >> 2].face[slot & 3]; }
   // Answers queries [base, base + n) of a batch (sparse on the target) as a block packet: the
   // centre query in full, then one traversal gathers the leaf blocks within reach of any query
   // (at most kMaxBlocks), and each other query searches those blocks as find() would, nearest
@@ -163,10 +158,10 @@ class TriangleBvh final : public NearestPointIndex {
   // The leaf blocks within `reach` of [lo, hi] into scratch; false if more than kMaxBlocks.
   bool gather_blocks(const float lo[3], const float hi[3], double reach,
                      PacketScratch& scratch) const;
-  // The faces whose float boxes lie within `reach` (float frame) of the box [lo, hi]; false if
-  // there are more than `max_faces`.
+  // The leaf slots (block << 2 | lane) of the faces whose float boxes lie within `reach` (float
+  // frame) of the box [lo, hi]; false if there are more than `max_faces`.
   bool gather(const float lo[3], const float hi[3], double reach, std::size_t max_faces,
-              std::vector<std::uint32_t>& faces) const;
+              std::vector<std::uint32_t>& slots) const;
 
   detail::FaceEvaluator eval_;
   const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -19,7 +20,7 @@ namespace {
 constexpr double kUnit = 0x1p-24;  // float's unit roundoff
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Candidates for one point: planes of random triangles (as TriangleBvh::face_planes makes them),
+// Candidates for one point: planes of random triangles (as PlaneKernels::block_planes makes them),
 // some all zeros (never culled), stored as kPlaneRows rows of `stride` floats with padding.
 struct Candidates {
   std::vector<Vec3> corners;  // 3 per candidate
@@ -137,6 +138,99 @@ TEST(PlaneBounds, NanBoundsBecomeZeroAndPaddingIsNeverTaken) {
     EXPECT_EQ(k.bounds(c.rows.data(), c.stride, c.count, q, bound.data()), 0u);
     std::vector<std::uint32_t> kept(c.stride);
     EXPECT_EQ(k.survivors(bound.data(), c.count, kInf, 99, kept.data()), c.count);
+  }
+}
+
+// The planes of one triangle as the brute-force twin computes them (double, from the float
+// corners): all zeros unless kappa <= kMaxCullKappa and |ab x ac|^2 >= kMinCullNormal2.
+struct TwinPlanes {
+  bool cullable = false;
+  double n[3] = {}, d = 0, m[3][3] = {}, md[3] = {};
+};
+TwinPlanes twin_planes(const Vec3 v[3]) {
+  TwinPlanes t;
+  const Vec3 ab = v[1] - v[0], ac = v[2] - v[0], n = cross(ab, ac);
+  const double kappa = norm(ab) * norm(ac) / norm(n);
+  if (!(squared_norm(n) >= kMinCullNormal2 && kappa <= kMaxCullKappa)) return t;
+  t.cullable = true;
+  const Vec3 unit = (1.0 / norm(n)) * n;
+  for (int a = 0; a < 3; ++a) t.n[a] = unit[a];
+  t.d = dot(unit, v[0]);
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 m = cross(v[(e + 1) % 3] - v[e], unit);
+    const Vec3 mu = (1.0 / norm(m)) * m;
+    for (int a = 0; a < 3; ++a) t.m[e][a] = mu[a];
+    t.md[e] = dot(mu, v[e]);
+  }
+  return t;
+}
+
+TEST(PlaneBounds, EveryKernelsBlockPlanesEqualTheDoubleTwin) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (SimdLevel level : supported_levels()) {
+    SCOPED_TRACE(simd_level_name(level));
+    const PlaneKernels& k = plane_kernels(level);
+    int never = 0, cullable = 0;
+    for (int trial = 0; trial < 400; ++trial) {
+      float corner[3][3][4] = {};
+      Vec3 v[4][3];
+      for (int lane = 0; lane < 4; ++lane) {
+        const int kind = (trial + lane) % 8;  // 0-3 ordinary, then sliver, tiny, flat, empty
+        const double size = std::pow(10.0, -4.0 * std::fabs(u(rng)));
+        const Vec3 centre{u(rng), u(rng), u(rng)};
+        for (Vec3& x : v[lane]) x = centre + size * Vec3{u(rng), u(rng), u(rng)};
+        if (kind == 4) {  // a sliver near the origin (exact in float): kappa = 5e6
+          v[lane][0] = Vec3{};
+          v[lane][1] = Vec3{size, 0, 0};
+          v[lane][2] = Vec3{0.5 * size, 1e-7 * size, 0};
+        }
+        if (kind == 5)
+          for (Vec3& x : v[lane]) x = centre + 1e-6 * (x - centre);   // |n|^2 ~ 1e-24
+        if (kind == 6) v[lane][2] = 0.5 * (v[lane][0] + v[lane][1]);  // no normal
+        if (kind == 7)
+          for (Vec3& x : v[lane]) x = Vec3{};  // an empty lane of a leaf block
+        for (int c = 0; c < 3; ++c)
+          for (int a = 0; a < 3; ++a) {
+            corner[c][a][lane] = static_cast<float>(v[lane][c][a]);
+            v[lane][c][a] = corner[c][a][lane];  // the float corners, exactly
+          }
+      }
+      BlockPlanes out;
+      std::memset(&out, 0x7f, sizeof out);  // every field must be written
+      k.block_planes(corner, out);
+      for (int lane = 0; lane < 4; ++lane) {
+        SCOPED_TRACE("trial " + std::to_string(trial) + " lane " + std::to_string(lane));
+        const TwinPlanes t = twin_planes(v[lane]);
+        // Each value within a float step of the twin's (FMA rounds differently in double).
+        auto near = [](float got, double want) {
+          EXPECT_NEAR(got, want, 0x1p-23 * std::fabs(want) + 1e-12);
+        };
+        double max_offset = std::fabs(t.d);
+        for (int a = 0; a < 3; ++a) near(out.row[kNx + a][lane], t.n[a]);
+        near(out.row[kD][lane], t.d);
+        for (int e = 0; e < 3; ++e) {
+          for (int a = 0; a < 3; ++a) near(out.row[kM0x + 4 * e + a][lane], t.m[e][a]);
+          near(out.row[kMd0 + 4 * e][lane], t.md[e]);
+          max_offset = std::max(max_offset, std::fabs(t.md[e]));
+        }
+        if (!t.cullable) {  // all zeros: a bound of 0, never culled
+          EXPECT_EQ(out.max_offset[lane], 0.0f);
+          for (int r = 0; r < kPlaneRows; ++r) EXPECT_EQ(out.row[r][lane], 0.0f);
+          ++never;
+          continue;
+        }
+        ++cullable;
+        // Rounded up: at least every offset the bound uses, at most a float step above.
+        const float stored[4] = {out.row[kD][lane], out.row[kMd0][lane], out.row[kMd0 + 4][lane],
+                                 out.row[kMd0 + 8][lane]};
+        for (float f : stored) EXPECT_GE(out.max_offset[lane], std::fabs(f));
+        EXPECT_GE(static_cast<double>(out.max_offset[lane]), max_offset * (1 - 1e-12));
+        EXPECT_LE(static_cast<double>(out.max_offset[lane]), max_offset * (1 + 0x1p-22) + 1e-30);
+      }
+    }
+    EXPECT_GE(never, 600);  // slivers, tiny, flat and empty lanes: half of them
+    EXPECT_GE(cullable, 700);
   }
 }
 
