@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <limits>
 #include <memory>
 
@@ -52,6 +53,9 @@ struct ChannelGroup {
   // Every measure compares unit normals of a 3-D channel: the inline path (unit_normal and
   // unit_normal_distance, which to_form and form_distance use, so the same numbers).
   bool unit_normals = false;
+  // Every measure compares the raw values (scalars, RGB, UVs) by Euclidean distance: the inline
+  // path (form_distance's arithmetic, so the same numbers).
+  bool raw = false;
 };
 
 std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const PreparedMesh& target,
@@ -73,9 +77,12 @@ std::vector<ChannelGroup> group_measures(const PreparedMesh& reference, const Pr
     it->kinds.push_back(measures[m].kind);
     it->forms.add(measures[m].kind);
   }
-  for (ChannelGroup& g : groups)
+  for (ChannelGroup& g : groups) {
     g.unit_normals = g.reference->dim == 3 &&
                      std::all_of(g.kinds.begin(), g.kinds.end(), is_unit_normal_measure);
+    g.raw = std::all_of(g.kinds.begin(), g.kinds.end(),
+                        [](MeasureKind k) { return value_form(k) == ValueForm::kRaw; });
+  }
   return groups;
 }
 
@@ -239,10 +246,17 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
             Vec3 na;
             if (g.unit_normals)
               na = unit_normal({fa[0], fa[1], fa[2]});
-            else
+            else if (!g.raw)
               g.forms.transform(fa, dim, form_a, at_a);
             auto each_measure = [&](const SurfaceHit& h, auto&& use) {
               interpolate(*g.target, tgt, h.face, h.bary, kNoFace, fb);
+              if (g.raw) {
+                double sum = 0.0;
+                for (int c = 0; c < dim; ++c) sum += (fa[c] - fb[c]) * (fa[c] - fb[c]);
+                const double d = std::sqrt(sum);
+                for (std::size_t k = 0; k < g.measures.size(); ++k) use(k, d);
+                return;
+              }
               if (g.unit_normals) {
                 const Vec3 nb = unit_normal({fb[0], fb[1], fb[2]});
                 for (std::size_t k = 0; k < g.measures.size(); ++k)
