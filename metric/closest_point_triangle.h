@@ -38,22 +38,35 @@ inline TriangleHit make_hit(const Vec3& q, double sq, double b0, double b1, doub
 TriangleHit closest_on_degenerate(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 }  // namespace detail
 
-// Closest point to p on triangle (a, b, c) by the Voronoi-region walk of Ericson, "Real-Time
-// Collision Detection" (2005) §5.1.5. Degenerate triangles (a zero-length edge, or |ab x ac|^2 at
-// most 1e-12 |ab|^2 |ac|^2, i.e. an angle below 1e-6 rad) are treated as the union of their three
-// edges, so the result is never NaN; the distance error this allows is below the inradius (< 1e-6
-// of the longest edge). A point bitwise equal to a vertex gets distance exactly 0. O(1), no
-// allocation. Inline: it runs once or more per query, and a call returned the hit through memory,
-// which the caller then read back with wider loads than the callee's stores (a stall per field).
-inline TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
-                                             const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a;
-  const double ab2 = squared_norm(ab), ac2 = squared_norm(ac);
-  const Vec3 n = cross(ab, ac);
-  const double n2 = squared_norm(n);
-  if (ab2 == 0.0 || ac2 == 0.0 || squared_norm(c - b) == 0.0 || !(n2 > 1e-12 * ab2 * ac2))
-    return detail::closest_on_degenerate(p, a, b, c);
+// The part of closest_point_on_triangle that does not depend on the point: the corners, the
+// edges ab and ac, the normal n = ab x ac, |n|^2, and whether the triangle is degenerate. Callers
+// that test many points against one triangle compute it once. O(1).
+struct TriangleSetup {
+  Vec3 a, b, c, ab, ac, n;
+  double n2 = 0;
+  bool degenerate = false;
+};
+inline TriangleSetup triangle_setup(const Vec3& a, const Vec3& b, const Vec3& c) {
+  TriangleSetup t;
+  t.a = a;
+  t.b = b;
+  t.c = c;
+  t.ab = b - a;
+  t.ac = c - a;
+  const double ab2 = squared_norm(t.ab), ac2 = squared_norm(t.ac);
+  t.n = cross(t.ab, t.ac);
+  t.n2 = squared_norm(t.n);
+  t.degenerate =
+      ab2 == 0.0 || ac2 == 0.0 || squared_norm(c - b) == 0.0 || !(t.n2 > 1e-12 * ab2 * ac2);
+  return t;
+}
 
+// closest_point_on_triangle(p, a, b, c) below from the triangle's setup: bit for bit the same
+// (the same operations on the same values).
+inline TriangleHit closest_point_on_triangle(const Vec3& p, const TriangleSetup& t) {
+  const Vec3 &a = t.a, &b = t.b, &c = t.c, &ab = t.ab, &ac = t.ac, &n = t.n;
+  const double n2 = t.n2;
+  if (t.degenerate) return detail::closest_on_degenerate(p, a, b, c);
   // Vertex region A.
   const Vec3 ap = p - a;
   const double d1 = dot(ab, ap), d2 = dot(ac, ap);
@@ -94,6 +107,18 @@ inline TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a, const
   const double v = vb * denom, w = vc * denom;
   const double h = dot(ap, n);
   return detail::make_hit(a + v * ab + w * ac, h * h / n2, 1.0 - v - w, v, w);
+}
+
+// Closest point to p on triangle (a, b, c) by the Voronoi-region walk of Ericson, "Real-Time
+// Collision Detection" (2005) §5.1.5. Degenerate triangles (a zero-length edge, or |ab x ac|^2 at
+// most 1e-12 |ab|^2 |ac|^2, i.e. an angle below 1e-6 rad) are treated as the union of their three
+// edges, so the result is never NaN; the distance error this allows is below the inradius (< 1e-6
+// of the longest edge). A point bitwise equal to a vertex gets distance exactly 0. O(1), no
+// allocation. Inline: it runs once or more per query, and a call returned the hit through memory,
+// which the caller then read back with wider loads than the callee's stores (a stall per field).
+inline TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
+                                             const Vec3& c) {
+  return closest_point_on_triangle(p, triangle_setup(a, b, c));
 }
 
 }  // namespace meshdev

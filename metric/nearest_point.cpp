@@ -109,11 +109,13 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with
 }
 
 SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const {
-  const Triangle& t = mesh->faces[face];
-  const Vec3& a = mesh->positions[t[0]];
-  const Vec3& b = mesh->positions[t[1]];
-  const Vec3& c = mesh->positions[t[2]];
-  TriangleHit h = closest_point_on_triangle(p, a, b, c);
+  return evaluate(p, face, setup(face), hint);
+}
+
+SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const TriangleSetup& triangle,
+                                   const QueryHint& hint) const {
+  const Vec3 &a = triangle.a, &b = triangle.b, &c = triangle.c;
+  TriangleHit h = closest_point_on_triangle(p, triangle);
   SurfaceHit s{face, h.sq_distance, h.bary, h.feature, h.point};
   int perm[3];
   if (hint.source != nullptr && s.sq_distance <= exact_check_sq &&

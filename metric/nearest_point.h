@@ -127,6 +127,14 @@ struct FaceEvaluator {
   FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true,
                 int threads = 0);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
+  // The same from the setup of the face's triangle (setup(face)), for callers that test many
+  // points against one face: the same hit, bit for bit.
+  SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const TriangleSetup& triangle,
+                      const QueryHint& hint) const;
+  TriangleSetup setup(std::uint32_t face) const {
+    const Triangle& t = mesh->faces[face];
+    return triangle_setup(mesh->positions[t[0]], mesh->positions[t[1]], mesh->positions[t[2]]);
+  }
   // Tie limit (not squared) for a minimum distance `best` (not squared).
   double limit(double best) const { return best * (1.0 + tie_relative) + tie_absolute; }
   // Squared tie limit for a minimum squared distance: limit(sqrt(best_sq))^2.

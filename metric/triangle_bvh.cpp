@@ -823,6 +823,11 @@ struct TriangleBvh::PacketScratch {
   alignas(16) float block_lo[3][kMaxBlocks + 4];
   alignas(16) float block_hi[3][kMaxBlocks + 4];
   std::size_t misses = 0;  // queries of the last packet farther from B than its guess
+  // The face the last packet query evaluated first, and the face whose triangle's setup is
+  // kept (both reset per batch).
+  std::uint32_t seen_face = kNoFace;
+  std::uint32_t setup_face = kNoFace;
+  TriangleSetup setup;
 };
 
 const BlockPlanes& TriangleBvh::block_planes(std::uint32_t block, PacketScratch& scratch) const {
@@ -854,6 +859,7 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     scratch.cache.clear();
     scratch.cache_owner = id_;
   }
+  scratch.seen_face = scratch.setup_face = kNoFace;
   std::uint32_t previous = kNoFace;
   double recent = -1.0;  // the largest distance of the last query or packet answered (-1: none)
   bool guess_ok = true;  // false: the last packet's guess failed for too many of its queries
@@ -1139,7 +1145,17 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     // The face of smallest bound first: its exact distance gives the tie limit, usually final.
     std::vector<SurfaceHit>& ties = scratch.ties;
     ties.clear();
-    SurfaceHit first = eval_.evaluate(p, face_of(scratch.slots[first_idx]), hint);
+    // Where samples are dense on B, consecutive queries mostly share that face: its triangle's
+    // setup is kept from the second query in a row that evaluates it first.
+    const std::uint32_t first_face = face_of(scratch.slots[first_idx]);
+    if (first_face != scratch.setup_face && first_face == scratch.seen_face) {
+      scratch.setup = eval_.setup(first_face);
+      scratch.setup_face = first_face;
+    }
+    scratch.seen_face = first_face;
+    SurfaceHit first = first_face == scratch.setup_face
+                           ? eval_.evaluate(p, first_face, scratch.setup, hint)
+                           : eval_.evaluate(p, first_face, hint);
     double best_sq = first.sq_distance, best = std::sqrt(best_sq);
     double limit = eval_.limit(best), limit_sq = limit * limit;  // = eval_.limit_sq(best_sq)
     ties.push_back(first);
