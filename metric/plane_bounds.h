@@ -54,7 +54,8 @@ struct PlaneKernels {
   // the normal n = ab x ac made unit, d = n.a, and per edge e (a->b, b->c, c->a) the unit
   // m_e = e x n and md_e = m_e.(its first corner); all in double, four lanes at once where the
   // instruction set allows. Every variant rounds each double operation once or less (FMA), so
-  // the rows differ between them only in the last float bit, within the caller's margin. O(1).
+  // the rows differ between them only in the last float bit, within the caller's margin (and,
+  // for a triangle at one of the two limits above, in whether it is kept). O(1).
   void (*block_planes)(const float corner[3][3][4], BlockPlanes& out);
 };
 

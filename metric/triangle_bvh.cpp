@@ -181,7 +181,8 @@ float round_up(double x) {
 
 // The conditioning kappa = |ab||ac| / |ab x ac| of a triangle with edges ab, ac (float frame), or
 // +inf where the triangle bound must never cull it: |ab x ac|^2 near float underflow
-// (kMinNormal2) or a sliver (kappa > kMaxKappa). Shared by the leaf bound and the packet planes.
+// (kMinNormal2) or a sliver (kappa > kMaxKappa). For the leaf bound's margins; the packets'
+// planes (PlaneKernels::block_planes) test the same limits on squares.
 double cull_kappa(const Vec3& ab, const Vec3& ac) {
   const double n2 = squared_norm(cross(ab, ac));
   if (!(n2 >= kMinNormal2)) return std::numeric_limits<double>::infinity();
