@@ -20,8 +20,32 @@ namespace {
 constexpr double kUnit = 0x1p-24;  // float's unit roundoff
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// Candidates for one point: planes of random triangles (as PlaneKernels::block_planes makes them),
-// some all zeros (never culled), stored as kPlaneRows rows of `stride` floats with padding.
+// The planes of one triangle as the brute-force twin computes them, in double from the given
+// corners: all zeros unless kappa <= kMaxCullKappa and |ab x ac|^2 >= kMinCullNormal2.
+struct TwinPlanes {
+  bool cullable = false;
+  double n[3] = {}, d = 0, m[3][3] = {}, md[3] = {};
+};
+TwinPlanes twin_planes(const Vec3 v[3]) {
+  TwinPlanes t;
+  const Vec3 ab = v[1] - v[0], ac = v[2] - v[0], n = cross(ab, ac);
+  const double kappa = norm(ab) * norm(ac) / norm(n);
+  if (!(squared_norm(n) >= kMinCullNormal2 && kappa <= kMaxCullKappa)) return t;
+  t.cullable = true;
+  const Vec3 unit = (1.0 / norm(n)) * n;
+  for (int a = 0; a < 3; ++a) t.n[a] = unit[a];
+  t.d = dot(unit, v[0]);
+  for (int e = 0; e < 3; ++e) {
+    const Vec3 m = cross(v[(e + 1) % 3] - v[e], unit);
+    const Vec3 mu = (1.0 / norm(m)) * m;
+    for (int a = 0; a < 3; ++a) t.m[e][a] = mu[a];
+    t.md[e] = dot(mu, v[e]);
+  }
+  return t;
+}
+
+// Candidates for one point: planes of random triangles (twin_planes), some all zeros (never
+// culled), stored as kPlaneRows rows of `stride` floats with padding.
 struct Candidates {
   std::vector<Vec3> corners;  // 3 per candidate
   std::vector<float> rows;
@@ -42,19 +66,14 @@ Candidates make_candidates(std::mt19937_64& rng, std::size_t count) {
     for (Vec3& x : v) x = centre + Vec3{u(rng), u(rng), u(rng)};
     c.corners.insert(c.corners.end(), v, v + 3);
     if (i % 7 == 3) continue;  // all zeros: bound 0
-    const Vec3 n = cross(v[1] - v[0], v[2] - v[0]);
-    const Vec3 unit = (1.0 / norm(n)) * n;
-    auto put = [&](int row, const Vec3& normal, double offset) {
+    const TwinPlanes t = twin_planes(v);
+    auto put = [&](int row, const double* normal, double offset) {
       for (int a = 0; a < 3; ++a) c.rows[(row + a) * c.stride + i] = static_cast<float>(normal[a]);
       c.rows[(row + 3) * c.stride + i] = static_cast<float>(offset);
       c.max_offset = std::max(c.max_offset, std::fabs(offset));
     };
-    put(kNx, unit, dot(unit, v[0]));
-    for (int e = 0; e < 3; ++e) {
-      const Vec3 m = cross(v[(e + 1) % 3] - v[e], unit);
-      const Vec3 mu = (1.0 / norm(m)) * m;
-      put(kM0x + 4 * e, mu, dot(mu, v[e]));
-    }
+    put(kNx, t.n, t.d);
+    for (int e = 0; e < 3; ++e) put(kM0x + 4 * e, t.m[e], t.md[e]);
   }
   return c;
 }
@@ -139,30 +158,6 @@ TEST(PlaneBounds, NanBoundsBecomeZeroAndPaddingIsNeverTaken) {
     std::vector<std::uint32_t> kept(c.stride);
     EXPECT_EQ(k.survivors(bound.data(), c.count, kInf, 99, kept.data()), c.count);
   }
-}
-
-// The planes of one triangle as the brute-force twin computes them (double, from the float
-// corners): all zeros unless kappa <= kMaxCullKappa and |ab x ac|^2 >= kMinCullNormal2.
-struct TwinPlanes {
-  bool cullable = false;
-  double n[3] = {}, d = 0, m[3][3] = {}, md[3] = {};
-};
-TwinPlanes twin_planes(const Vec3 v[3]) {
-  TwinPlanes t;
-  const Vec3 ab = v[1] - v[0], ac = v[2] - v[0], n = cross(ab, ac);
-  const double kappa = norm(ab) * norm(ac) / norm(n);
-  if (!(squared_norm(n) >= kMinCullNormal2 && kappa <= kMaxCullKappa)) return t;
-  t.cullable = true;
-  const Vec3 unit = (1.0 / norm(n)) * n;
-  for (int a = 0; a < 3; ++a) t.n[a] = unit[a];
-  t.d = dot(unit, v[0]);
-  for (int e = 0; e < 3; ++e) {
-    const Vec3 m = cross(v[(e + 1) % 3] - v[e], unit);
-    const Vec3 mu = (1.0 / norm(m)) * m;
-    for (int a = 0; a < 3; ++a) t.m[e][a] = mu[a];
-    t.md[e] = dot(mu, v[e]);
-  }
-  return t;
 }
 
 TEST(PlaneBounds, EveryKernelsBlockPlanesEqualTheDoubleTwin) {
