@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <string>
 
 #include "metric/plane_bounds.h"
 #include "metric/simd4.h"
@@ -23,6 +24,7 @@ constexpr int kBins = 16;
 constexpr std::uint32_t kLeafSize = 4;
 constexpr std::uint32_t kAlignBelow = 32;       // subtrees this small split at multiples of 4
 constexpr std::uint32_t kTaskBelow = 1u << 15;  // smaller subtrees are built by one thread
+constexpr std::uint32_t kMinRun = 4;  // mean run of faces in one bin for the binning by runs
 // Below this depth the binary build splits by SAH; deeper (only for pathological inputs) it splits
 // the list in halves, so the depth stays below kMaxSahDepth + 33 and leaves keep <= 4 faces.
 constexpr int kMaxSahDepth = 60;
@@ -340,7 +342,8 @@ void TriangleBvh::build(int threads) {
   std::unique_ptr<BinaryNode[]> tree(new BinaryNode[max_nodes]);
   std::atomic<std::uint32_t> next_node{1};
   auto split = [&](auto&& self, std::uint32_t node, std::uint32_t begin, std::uint32_t end,
-                   int depth, bool known, Bounds bounds, Bounds centre_bounds) -> void {
+                   int depth, bool known, Bounds bounds, Bounds centre_bounds,
+                   bool long_runs) -> void {
     assert(depth <= kMaxBinaryDepth);
     Prim* const first = prims.get();
     if (!known)
@@ -369,6 +372,7 @@ void TriangleBvh::build(int threads) {
     // Equal centres or too deep: split the list in halves, which bounds depth and leaf sizes.
     std::uint32_t mid = begin + std::max(kLeafSize, count / 2 / kLeafSize * kLeafSize);
     bool children_known = false;
+    bool children_long_runs = long_runs;
     Bounds child_bounds[2], child_centres[2];
     if (count <= kAlignBelow && axis_extent > 0.0 && depth < kMaxSahDepth) {
       // Small subtrees: sorted along the axis, and split where SAH is least among the splits
@@ -435,14 +439,52 @@ void TriangleBvh::build(int threads) {
         const double t = (prim.key(axis) - lo) * scale;
         return t >= kBins - 1 ? kBins - 1 : t > 0.0 ? static_cast<int>(t) : 0;
       };
-      for (std::uint32_t i = begin; i < end; ++i) {
-        const int b = bin_of(first[i]);
-        bin_at[i] = static_cast<std::uint8_t>(b);
-        bin_box[b].extend(F4::load(first[i].lo), F4::load(first[i].hi));
-        const F4 c = first[i].centre2();
-        bin_centres[b].extend(c, c);
-        ++bin_count[b];
+      // Faces near in the mesh's order are often near in space and fall in the bin of the face
+      // before. Where the parent's faces did so in runs of kMinRun or more on average (and at
+      // the root), runs are gathered in registers and added to their bin once, instead of a load
+      // and a store per face and box; where they did not, that branch would be mispredicted too
+      // often, and each face goes to its bin. The bins are the same either way (min and max).
+      std::uint8_t* const bins = bin_at.get();
+      int run = bin_of(first[begin]);
+      std::uint32_t changes = 0;  // faces in another bin than the face before
+      if (long_runs) {
+        Bounds run_box, run_centres;
+        std::uint32_t run_count = 0;
+        for (std::uint32_t i = begin; i < end; ++i) {
+          const int b = bin_of(first[i]);
+          bins[i] = static_cast<std::uint8_t>(b);
+          if (b != run) {
+            bin_box[run].extend(run_box);
+            bin_centres[run].extend(run_centres);
+            bin_count[run] += run_count;
+            run = b;
+            run_box = run_centres = Bounds{};
+            run_count = 0;
+            ++changes;
+          }
+          const F4 lo4 = F4::load(first[i].lo), hi4 = F4::load(first[i].hi);
+          run_box.extend(lo4, hi4);
+          const F4 c = lo4 + hi4;
+          run_centres.extend(c, c);
+          ++run_count;
+        }
+        bin_box[run].extend(run_box);
+        bin_centres[run].extend(run_centres);
+        bin_count[run] += run_count;
+      } else {
+        for (std::uint32_t i = begin; i < end; ++i) {
+          const int b = bin_of(first[i]);
+          bins[i] = static_cast<std::uint8_t>(b);
+          changes += b != run;
+          run = b;
+          const F4 lo4 = F4::load(first[i].lo), hi4 = F4::load(first[i].hi);
+          bin_box[b].extend(lo4, hi4);
+          const F4 c = lo4 + hi4;
+          bin_centres[b].extend(c, c);
+          ++bin_count[b];
+        }
       }
+      children_long_runs = changes * kMinRun <= count;
       double right_area[kBins];
       std::uint32_t right_count[kBins];
       Bounds acc;
@@ -490,22 +532,22 @@ void TriangleBvh::build(int threads) {
     tree[node].index = left_child;
     tree[node].count = 0;
     if (count > kTaskBelow) {
-#pragma omp task default(shared) firstprivate(left_child, mid, children_known)
+#pragma omp task default(shared) firstprivate(left_child, mid, children_known, children_long_runs)
       self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
-           child_centres[0]);
+           child_centres[0], children_long_runs);
       self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
-           child_centres[1]);
+           child_centres[1], children_long_runs);
 #pragma omp taskwait
     } else {
       self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
-           child_centres[0]);
+           child_centres[0], children_long_runs);
       self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
-           child_centres[1]);
+           child_centres[1], children_long_runs);
     }
   };
 #pragma omp parallel num_threads(team)
 #pragma omp single
-  split(split, 0, 0, n, 1, true, root_bounds, root_centres);
+  split(split, 0, 0, n, 1, true, root_bounds, root_centres, true);
 
   // Collapse into 4-wide nodes (recursive: the binary depth is bounded). Leaf blocks are numbered
   // here and filled below, in parallel.
@@ -614,6 +656,70 @@ void TriangleBvh::build(int threads) {
   packet_extent_ = kPacketExtent * mean_edge;
   full_packet_extent_ = kFullPacketExtent * mean_edge;
   assert(depth_ <= kMaxBinaryDepth);
+}
+
+std::string TriangleBvh::check_structure() const {
+  const std::size_t faces = eval_.mesh->faces.size();
+  std::vector<std::uint8_t> seen(faces, 0);
+  std::size_t found = 0;
+  std::string error;
+  auto fail = [&](const std::string& what) {
+    if (error.empty()) error = what;
+  };
+  auto inside = [](float x, float lo, float hi) { return lo <= x && x <= hi; };
+  // A leaf's lanes, against the box its parent holds for it (none for a root leaf).
+  auto check_leaf = [&](std::uint32_t l, const float(*lo)[4], const float(*hi)[4], int k) {
+    if (l >= leaves_.size()) return fail("leaf ref " + std::to_string(l) + " out of range");
+    const Leaf& leaf = leaves_[l];
+    bool empty = false;
+    for (int lane = 0; lane < 4; ++lane) {
+      const std::uint32_t f = leaf.face[lane];
+      const std::string at = "leaf " + std::to_string(l) + " lane " + std::to_string(lane);
+      if (f == kNoFace) {
+        empty = true;
+        continue;
+      }
+      if (empty) return fail(at + ": a face after an empty lane");
+      if (f >= faces) return fail(at + ": face " + std::to_string(f) + " out of range");
+      if (seen[f]++ != 0) return fail(at + ": face " + std::to_string(f) + " seen twice");
+      ++found;
+      if (lo == nullptr) continue;
+      for (int corner = 0; corner < 3; ++corner)
+        for (int axis = 0; axis < 3; ++axis)
+          if (!inside(leaf.corner[corner][axis][lane], lo[axis][k], hi[axis][k]))
+            return fail(at + ": face " + std::to_string(f) + " outside its box");
+    }
+  };
+  auto visit = [&](auto&& self, std::uint32_t id) -> void {
+    if (id >= nodes_.size()) return fail("node ref " + std::to_string(id) + " out of range");
+    const Node& node = nodes_[id];
+    for (int k = 0; k < 4; ++k) {
+      const std::uint32_t ref = node.child[k];
+      if (ref == kEmpty) continue;
+      if ((ref & kLeafBit) != 0) {
+        check_leaf(ref & ~kLeafBit, node.lo, node.hi, k);
+        continue;
+      }
+      if (ref <= id)
+        return fail("node " + std::to_string(id) + " refers back to " + std::to_string(ref));
+      if (ref < nodes_.size()) {
+        const Node& child = nodes_[ref];
+        for (int c = 0; c < 4; ++c)
+          for (int axis = 0; axis < 3; ++axis)
+            if (child.child[c] != kEmpty &&
+                !(node.lo[axis][k] <= child.lo[axis][c] && child.hi[axis][c] <= node.hi[axis][k]))
+              return fail("node " + std::to_string(ref) + " child " + std::to_string(c) +
+                          " outside its parent's box");
+      }
+      self(self, ref);
+    }
+  };
+  if ((root_ & kLeafBit) != 0)
+    check_leaf(root_ & ~kLeafBit, nullptr, nullptr, 0);
+  else
+    visit(visit, root_);
+  if (error.empty() && found != faces) fail(std::to_string(faces - found) + " faces in no leaf");
+  return error;
 }
 
 bool TriangleBvh::to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const {

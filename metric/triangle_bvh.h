@@ -46,6 +46,7 @@
 //      Wald et al., "Getting rid of packets" (2008) and Embree for 4-wide nodes.
 #include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "metric/nearest_point.h"
@@ -69,6 +70,10 @@ class TriangleBvh final : public NearestPointIndex {
   // Bytes of the structure (nodes and leaf blocks), without the mesh it indexes.
   std::size_t memory_bytes() const;
   int depth() const { return depth_; }  // levels of 4-wide nodes, leaves included
+  // The structure's invariants, for tests: every face of the target in exactly one leaf lane,
+  // every child box holding its node's child boxes or its leaf's float corners, empty lanes
+  // last. Returns "" or the first violation found. O(F) time and memory.
+  std::string check_structure() const;
 
  private:
   // Four child boxes, [axis][child]; child refs: a node index, kLeaf | leaf index, or kEmpty.

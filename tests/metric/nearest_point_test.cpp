@@ -201,6 +201,28 @@ TEST(NearestPoint, BvhIsTheSameForAnyBuildThreadCount) {
   }
 }
 
+// The build's invariants (every face in one leaf, every box holding what is below it) on faces in
+// space-coherent order, which the binning gathers in runs of one bin, and shuffled, which it
+// bins face by face; with faces of very unequal size, and a tall face last in a grid's order, so
+// the last run of a bin holds the face that makes its box.
+TEST(NearestPoint, BvhBoxesHoldTheirFacesInAnyFaceOrder) {
+  TriMesh tall = test::grid(40);
+  const auto v = static_cast<std::uint32_t>(tall.positions.size());
+  tall.positions.push_back({1.0, 1.0, 0.0});
+  tall.positions.push_back({0.99, 1.0, 5.0});
+  tall.positions.push_back({1.0, 0.99, 5.0});
+  tall.faces.push_back({v, v + 1, v + 2});
+  const std::vector<TriMesh> meshes = {tall, test::grid(60), test::icosphere(4),
+                                       test::random_soup(3000, 5)};
+  for (std::size_t i = 0; i < meshes.size(); ++i)
+    for (bool shuffled : {false, true}) {
+      TriMesh m = meshes[i];
+      if (shuffled) std::shuffle(m.faces.begin(), m.faces.end(), std::mt19937_64(i + 1));
+      const TriangleBvh bvh(m);
+      EXPECT_EQ(bvh.check_structure(), "") << "mesh " << i << (shuffled ? " shuffled" : "");
+    }
+}
+
 // Found by fuzz_nearest_point: one vertex 1e6 away makes the float frame 5e5 wide, so a cluster of
 // unit triangles (duplicates among them) is a few 1e-6 of it; squaring the raw plane and edge
 // offsets underflowed and the bound overestimated a duplicate tie's distance by 1 %.
