@@ -12,6 +12,7 @@
 #include <numeric>
 #include <string>
 
+#include "metric/float_rounding.h"
 #include "metric/plane_bounds.h"
 #include "metric/simd4.h"
 
@@ -157,30 +158,6 @@ std::uint32_t sortable_bits(float f) {
   return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
 }
 
-// The next float above f (f finite); std::nextafter without the library call.
-float next_up(float f) {
-  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
-  std::uint32_t bits;
-  std::memcpy(&bits, &f, sizeof bits);
-  bits += f > 0.0f ? 1 : -1;
-  std::memcpy(&f, &bits, sizeof f);
-  return f;
-}
-
-// Nearest float not above / not below x; +-inf beyond the float range.
-float round_down(double x) {
-  if (x > std::numeric_limits<float>::max()) return std::numeric_limits<float>::max();
-  if (x < -std::numeric_limits<float>::max()) return -kInf;
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? -next_up(-f) : f;
-}
-float round_up(double x) {
-  if (!(x <= std::numeric_limits<float>::max())) return kInf;  // also NaN: no culling
-  if (x < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::max();
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? next_up(f) : f;
-}
-
 // The conditioning kappa = |ab||ac| / |ab x ac| of a triangle with edges ab, ac (float frame), or
 // +inf where the triangle bound must never cull it: |ab x ac|^2 near float underflow
 // (kMinNormal2) or a sliver (kappa > kMaxKappa). For the leaf bound's margins; the packets'
@@ -317,8 +294,8 @@ void TriangleBvh::build(int threads) {
         }
       Prim& prim = prims[f];
       for (int k = 0; k < 3; ++k) {
-        prim.lo[k] = round_down(lo[k]);
-        prim.hi[k] = round_up(hi[k]);
+        prim.lo[k] = round_down_to_float(lo[k]);
+        prim.hi[k] = round_up_to_float(hi[k]);
       }
       const auto face = static_cast<std::uint32_t>(f);
       std::memcpy(&prim.lo[3], &face, sizeof face);
@@ -646,7 +623,7 @@ void TriangleBvh::build(int threads) {
       size += std::sqrt(std::max({squared_norm(ab), squared_norm(ac), squared_norm(cc - bb)}));
       const double kappa = cull_kappa(ab, ac);
       if (std::isfinite(kappa))
-        leaf.margin[lane] = round_up(kMarginConstant * kUnit * (2.0 + kappa));
+        leaf.margin[lane] = round_up_to_float(kMarginConstant * kUnit * (2.0 + kappa));
     }
     leaf_size[l] = size;
   }
@@ -764,8 +741,8 @@ struct TriangleBvh::Search {
   // put the query from it (FaceEvaluator::evaluate), so the search never narrows below the reach
   // of that check. The radii only shrink (a block packet starts them from an upper bound).
   const double r = frame_reach(limit_dist, s.floor_dist, s.slack);
-  s.box_limit2 = std::min(s.box_limit2, round_up(r * r * (1.0 + 1e-5)));
-  s.leaf_limit = std::min(s.leaf_limit, round_up(r * (1.0 + 1e-6)));
+  s.box_limit2 = std::min(s.box_limit2, round_up_to_float(r * r * (1.0 + 1e-5)));
+  s.leaf_limit = std::min(s.leaf_limit, round_up_to_float(r * (1.0 + 1e-6)));
 }
 
 [[gnu::always_inline]] inline void TriangleBvh::consider(Search& s, std::uint32_t f) const {
@@ -1051,7 +1028,7 @@ bool TriangleBvh::visit_blocks(const float lo[3], const float hi[3], double reac
                                AtBlock&& at_block) const {
   const F4 qlo[3] = {F4::splat(lo[0]), F4::splat(lo[1]), F4::splat(lo[2])};
   const F4 qhi[3] = {F4::splat(hi[0]), F4::splat(hi[1]), F4::splat(hi[2])};
-  const F4 limit2 = F4::splat(round_up(reach * reach * (1.0 + 1e-5)));
+  const F4 limit2 = F4::splat(round_up_to_float(reach * reach * (1.0 + 1e-5)));
   std::uint32_t stack[kStackSize];
   int top = 0;
   if ((root_ & kLeafBit) != 0) {  // a single block: its box is the mesh's (within the frame)
@@ -1243,7 +1220,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     const double margin =
         16.0 * kUnit * (std::fabs(qf[0]) + std::fabs(qf[1]) + std::fabs(qf[2]) + max_offset + 2.0);
     auto cutoff_of = [&](double r) {  // r: a reach
-      return round_up((r + margin) * (r + margin) * (1.0 + 1e-5));
+      return round_up_to_float((r + margin) * (r + margin) * (1.0 + 1e-5));
     };
     // All bounds, and the smallest (NaN bounds become 0: evaluated first, never culled).
     const std::size_t first_idx =
