@@ -67,6 +67,27 @@ BoundingBox corner_bounding_box(const TriMesh& mesh, int threads) {
   return box;
 }
 
+BoundingBox position_bounding_box(const TriMesh& mesh, int threads) {
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  std::vector<BoundingBox> part(static_cast<std::size_t>(team));
+  const auto vertices = static_cast<std::int64_t>(mesh.positions.size());
+#pragma omp parallel num_threads(team)
+  {
+    BoundingBox box;
+#pragma omp for schedule(static) nowait
+    for (std::int64_t v = 0; v < vertices; ++v)
+      box.extend(mesh.positions[static_cast<std::size_t>(v)]);
+    part[static_cast<std::size_t>(omp_get_thread_num())] = box;
+  }
+  BoundingBox box;  // min and max per axis: the same whatever the split
+  for (const BoundingBox& b : part)
+    for (int k = 0; k < 3; ++k) {
+      box.min[k] = std::min(box.min[k], b.min[k]);
+      box.max[k] = std::max(box.max[k], b.max[k]);
+    }
+  return box;
+}
+
 BoundingBox bounding_box(const TriMesh& mesh, const std::vector<bool>& used) {
   BoundingBox box;
   if (mesh.faces.empty()) {

@@ -33,5 +33,20 @@ TEST(Mesh, CornerBoundingBoxEqualsTheSerialBoxOnAnyTeam) {
   EXPECT_LT(corner_bounding_box(soup, 2).max.x, 1e9);
 }
 
+// The parallel box of all positions is the serial loop's on any team size: unreferenced
+// vertices are in it, NaN coordinates are not.
+TEST(Mesh, PositionBoundingBoxEqualsTheSerialLoopOnAnyTeam) {
+  TriMesh soup = test::random_soup(2000, 6);
+  soup.positions.push_back({1e9, -1e9, 3e9});  // referenced by no face
+  soup.positions[soup.faces[7][1]].y = std::numeric_limits<double>::quiet_NaN();
+  BoundingBox serial;
+  for (const Vec3& p : soup.positions) serial.extend(p);
+  EXPECT_EQ(serial.max.x, 1e9);
+  for (int threads : {1, 2, 3, 7}) {
+    SCOPED_TRACE(threads);
+    expect_same_box(position_bounding_box(soup, threads), serial);
+  }
+}
+
 }  // namespace
 }  // namespace meshdev
