@@ -101,11 +101,11 @@ constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutiv
 
 }  // namespace
 
-QueryHint sample_hint(const TriMesh& reference, const Sample& s, Vec3 corners[3]) {
+QueryHint sample_hint(const TriMesh& reference, const Sample& s) {
   QueryHint hint;
   if (s.face == kNoFace) return hint;
-  for (int c = 0; c < 3; ++c) corners[c] = reference.positions[reference.faces[s.face][c]];
-  hint.source = corners;
+  hint.source_mesh = &reference;
+  hint.source_face = s.face;
   hint.source_bary = s.bary;
   return hint;
 }
@@ -196,7 +196,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
         out.nearest.resize(n);
     }
     BatchHits batch;
-    std::vector<Vec3> points, corners;
+    std::vector<Vec3> points;
     std::vector<QueryHint> hints;
     std::vector<std::uint32_t> order;
     std::vector<std::uint64_t> keys;
@@ -216,14 +216,13 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
       const std::size_t count = std::min(n, begin + kChunk) - begin;
       points.resize(count);
       hints.resize(count);
-      corners.resize(3 * count);
       for (std::size_t j = 0; j < count; ++j)
         points[j] = samples.samples[sample_at(begin + j)].point;
       morton_order(points.data(), count, sample_box, order, keys);
       for (std::size_t j = 0; j < count; ++j) {
         const Sample& s = samples.samples[sample_at(begin + order[j])];
         points[j] = s.point;
-        hints[j] = sample_hint(ref, s, &corners[3 * j]);
+        hints[j] = sample_hint(ref, s);
       }
       // A batch may stop early (BatchHits::kMaxHits ties held); the rest goes in the next one.
       for (std::size_t from = 0; from < count;) {

@@ -33,10 +33,10 @@ struct SampleDeviations {
   double cohen_max_uv_gap = 0;           // largest UV distance of an outside sample to B's UVs
 };
 
-// The query hint of sample `s` of `reference` (QueryHint::source): its triangle's corners, copied
-// into `corners` (which must outlive the hint), and its barycentrics; no source for vertex
-// samples of point clouds. O(1).
-QueryHint sample_hint(const TriMesh& reference, const Sample& s, Vec3 corners[3]);
+// The query hint of sample `s` of `reference` (QueryHint::source_mesh): its triangle, by index
+// (`reference` must outlive the hint), and its barycentrics; no source for vertex samples of
+// point clouds. O(1).
+QueryHint sample_hint(const TriMesh& reference, const Sample& s);
 
 // Deviation of each sample of `reference` against `target` (whose index is `index`), for every
 // measure of `measures` (measure 0 must be geometry). Units: those of each measure (absolute).

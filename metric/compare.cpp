@@ -54,8 +54,7 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   auto nearest_of = [&](std::size_t i) {
     if (!dev.nearest.empty()) return dev.nearest[i];
     const Sample& s = samples.samples[i];
-    Vec3 corners[3];
-    index->find(s.point, sample_hint(*from.mesh, s, corners), ties);
+    index->find(s.point, sample_hint(*from.mesh, s), ties);
     return ties.front();
   };
 

@@ -118,8 +118,9 @@ SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const Tria
   TriangleHit h = closest_point_on_triangle(p, triangle);
   SurfaceHit s{face, h.sq_distance, h.bary, h.feature, h.point};
   int perm[3];
-  if (hint.source != nullptr && s.sq_distance <= exact_check_sq &&
-      match_corners(hint.source, a, b, c, perm)) {
+  Vec3 corners[3];
+  if (hint.has_source() && s.sq_distance <= exact_check_sq &&
+      match_corners(hint.source_corners(corners), a, b, c, perm)) {
     s.sq_distance = 0.0;
     s.point = p;
     for (int i = 0; i < 3; ++i) s.bary[i] = hint.source_bary[perm[i]];

@@ -40,10 +40,24 @@ struct QueryHint {
   // 1e-16 rounding of re-projecting a sample onto its own triangle, so identical meshes compare
   // to exactly 0 (reliability.md §6.3).
   const Vec3* source = nullptr;  // 3 corners, or nullptr
+  // ... or that triangle by index: face `source_face` of `source_mesh` (used when `source` is
+  // null). Its corners are read only where a target triangle comes that close, not for every
+  // query (compute_deviations: +1-2 % on torus1m -> 100k, docs/performance.md §3).
+  const TriMesh* source_mesh = nullptr;
+  std::uint32_t source_face = kNoFace;
   std::array<double, 3> source_bary{1, 0, 0};
   // A target face tested first (e.g. the previous sample's nearest). Only gives an early upper
   // bound: results do not depend on it.
   std::uint32_t start_face = kNoFace;
+
+  bool has_source() const { return source != nullptr || source_mesh != nullptr; }
+  // The source triangle's corners: `source`, or the mesh's corners of source_face copied to
+  // `out`. Precondition: has_source().
+  const Vec3* source_corners(Vec3 out[3]) const {
+    if (source != nullptr) return source;
+    for (int c = 0; c < 3; ++c) out[c] = source_mesh->positions[source_mesh->faces[source_face][c]];
+    return out;
+  }
 };
 
 // The answers to a batch of queries (NearestPointIndex::find_batch), flattened so a batch of

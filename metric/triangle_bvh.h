@@ -114,9 +114,7 @@ class TriangleBvh final : public NearestPointIndex {
                           PacketScratch& scratch, BatchHits& out) const;
   // The reach of the identical-triangle check for a query with this hint (FaceEvaluator):
   // the search never narrows below it. 0 without a source triangle.
-  double floor_of(const QueryHint& hint) const {
-    return hint.source != nullptr ? check_reach_ : 0.0;
-  }
+  double floor_of(const QueryHint& hint) const { return hint.has_source() ? check_reach_ : 0.0; }
   // A tie limit (absolute, not squared) as a culling radius in the float frame: at least
   // `floor`, plus the query's rounding slack (to_frame).
   double frame_reach(double limit, double floor, double slack) const {

@@ -129,7 +129,7 @@ double TriangleGrid::find(const Vec3& p, const QueryHint& hint,
   std::uint32_t best_face = kNoFace;
   // Faces identical to the query's source triangle are kept within the exact check's reach (see
   // TriangleBvh::find), so the search radius never falls below it.
-  const double floor_dist = hint.source != nullptr ? std::sqrt(eval_.exact_check_sq) : 0.0;
+  const double floor_dist = hint.has_source() ? std::sqrt(eval_.exact_check_sq) : 0.0;
   auto consider = [&](std::uint32_t f) {
     if (eval_.rejects(p, f, std::max(limit_dist, floor_dist))) return;
     const SurfaceHit h = eval_.evaluate(p, f, hint);

@@ -53,8 +53,7 @@ TEST(AttributeDeviation, EqualsThePerTieMinimumOfAttributeDistanceOverTheBruteFo
   double fa[16], fb[16];
   for (std::size_t i = 0; i < samples.samples.size(); ++i) {
     const Sample& s = samples.samples[i];
-    Vec3 corners[3];
-    const double distance = brute->find(s.point, sample_hint(a, s, corners), ties);
+    const double distance = brute->find(s.point, sample_hint(a, s), ties);
     ASSERT_EQ(d.values[0][i], distance) << "sample " << i;
     ASSERT_EQ(d.tie_count[i], ties.size()) << "sample " << i;
     ASSERT_EQ(d.nearest_feature[i], ties.front().feature) << "sample " << i;
