@@ -147,8 +147,8 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   // The grid of the Morton order each chunk is queried in: the box of the reference's vertices,
   // which holds its samples (up to rounding; morton_order clamps), on the team. (Vertices no
   // face uses can only make the grid coarser: speed, not results. The box of the faces' corners
-  // took 2-3 ms for torus1m's 1M faces, 2-3 % of torus1m -> 100k's 2-thread query phase, the
-  // vertices' 0.5 ms: docs/performance.md §3.)
+  // took 2-6 ms for torus1m's 1M faces, 2-6 % of torus1m -> 100k's 2-thread query phase, the
+  // vertices' 0.4-0.8 ms: docs/performance.md §3.)
   const BoundingBox sample_box = position_bounding_box(ref, threads);
   // Sets of more than one chunk are first put in order of their coarse Morton cells (a stable
   // counting sort): samples generated face by face are near each other only if the faces are,

@@ -667,6 +667,7 @@ std::string TriangleBvh::check_structure() const {
   auto check_leaf = [&](std::uint32_t l, const float(*lo)[4], const float(*hi)[4], int k) {
     if (l >= leaves_.size()) return fail("leaf ref " + std::to_string(l) + " out of range");
     const Leaf& leaf = leaves_[l];
+    if (leaf.face[0] == kNoFace) return fail("leaf " + std::to_string(l) + " holds no face");
     bool empty = false;
     for (int lane = 0; lane < 4; ++lane) {
       const std::uint32_t f = leaf.face[lane];

@@ -71,8 +71,8 @@ class TriangleBvh final : public NearestPointIndex {
   std::size_t memory_bytes() const;
   int depth() const { return depth_; }  // levels of 4-wide nodes, leaves included
   // The structure's invariants, for tests: every face of the target in exactly one leaf lane,
-  // every child box holding its node's child boxes or its leaf's float corners, empty lanes
-  // last. Returns "" or the first violation found. O(F) time and memory.
+  // every child box holding its node's child boxes or its leaf's float corners, no empty leaf,
+  // empty lanes last. Returns "" or the first violation found. O(F) time and memory.
   std::string check_structure() const;
 
  private:
