@@ -45,20 +45,23 @@ BoundingBox bounding_box(const TriMesh& mesh) {
   return bounding_box(mesh, referenced_vertices(mesh));
 }
 
-BoundingBox corner_bounding_box(const TriMesh& mesh, int threads) {
-  if (mesh.faces.empty()) return bounding_box(mesh);
+namespace {
+
+// The box of what extend(box, i) adds for i in [0, count), each thread extending its own box over
+// a static share, then merged: min and max per axis, the same whatever the split (extend ignores
+// NaN).
+template <class Extend>
+BoundingBox box_on_team(std::int64_t count, int threads, Extend&& extend) {
   const int team = threads > 0 ? threads : omp_get_max_threads();
   std::vector<BoundingBox> part(static_cast<std::size_t>(team));
-  const auto faces = static_cast<std::int64_t>(mesh.faces.size());
 #pragma omp parallel num_threads(team)
   {
     BoundingBox box;
 #pragma omp for schedule(static) nowait
-    for (std::int64_t f = 0; f < faces; ++f)
-      for (std::uint32_t v : mesh.faces[static_cast<std::size_t>(f)]) box.extend(mesh.positions[v]);
+    for (std::int64_t i = 0; i < count; ++i) extend(box, static_cast<std::size_t>(i));
     part[static_cast<std::size_t>(omp_get_thread_num())] = box;
   }
-  BoundingBox box;  // min and max per axis: the same whatever the split (extend ignores NaN)
+  BoundingBox box;
   for (const BoundingBox& b : part)
     for (int k = 0; k < 3; ++k) {
       box.min[k] = std::min(box.min[k], b.min[k]);
@@ -67,25 +70,19 @@ BoundingBox corner_bounding_box(const TriMesh& mesh, int threads) {
   return box;
 }
 
+}  // namespace
+
+BoundingBox corner_bounding_box(const TriMesh& mesh, int threads) {
+  if (mesh.faces.empty()) return bounding_box(mesh);
+  return box_on_team(static_cast<std::int64_t>(mesh.faces.size()), threads,
+                     [&](BoundingBox& box, std::size_t f) {
+                       for (std::uint32_t v : mesh.faces[f]) box.extend(mesh.positions[v]);
+                     });
+}
+
 BoundingBox position_bounding_box(const TriMesh& mesh, int threads) {
-  const int team = threads > 0 ? threads : omp_get_max_threads();
-  std::vector<BoundingBox> part(static_cast<std::size_t>(team));
-  const auto vertices = static_cast<std::int64_t>(mesh.positions.size());
-#pragma omp parallel num_threads(team)
-  {
-    BoundingBox box;
-#pragma omp for schedule(static) nowait
-    for (std::int64_t v = 0; v < vertices; ++v)
-      box.extend(mesh.positions[static_cast<std::size_t>(v)]);
-    part[static_cast<std::size_t>(omp_get_thread_num())] = box;
-  }
-  BoundingBox box;  // min and max per axis: the same whatever the split
-  for (const BoundingBox& b : part)
-    for (int k = 0; k < 3; ++k) {
-      box.min[k] = std::min(box.min[k], b.min[k]);
-      box.max[k] = std::max(box.max[k], b.max[k]);
-    }
-  return box;
+  return box_on_team(static_cast<std::int64_t>(mesh.positions.size()), threads,
+                     [&](BoundingBox& box, std::size_t v) { box.extend(mesh.positions[v]); });
 }
 
 BoundingBox bounding_box(const TriMesh& mesh, const std::vector<bool>& used) {
