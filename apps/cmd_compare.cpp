@@ -222,7 +222,7 @@ int run_compare(const CompareArgs& args) {
     }
     for (std::size_t m = 0; m < result.measures.size(); ++m) {
       AttributeChannel& ch = *cloud.channel("dev_" + result.measures[m].name);
-      ch.values = forward.deviations.values[m];
+      ch.values.assign(forward.deviations.values[m].begin(), forward.deviations.values[m].end());
     }
     AttributeChannel& kind = *cloud.channel("kind");
     AttributeChannel& face = *cloud.channel("face");

@@ -9,6 +9,7 @@
 
 #include "metric/attributes.h"
 #include "metric/nearest_point.h"
+#include "metric/raw_storage_allocator.h"
 #include "metric/sampling.h"
 
 namespace meshdev {
@@ -20,12 +21,21 @@ struct DeviationOptions {
   bool keep_nearest = true;
 };
 
+// A per-sample array of compute_deviations's result. Its storage is left raw by the resize
+// (metric/raw_storage_allocator.h), and every element is then written once, by the thread that
+// computes that sample: zero-filling the arrays first (37 MB for a million samples and three
+// measures) took 2-3 % of a 2-thread run even where the allocator reused touched memory
+// (docs/performance.md §3). Read it like any vector; the statistics take it as a ConstSpan.
+template <class T>
+using PerSample = std::vector<T, RawStorageAllocator<T>>;
+using DeviationArray = PerSample<double>;
+
 struct SampleDeviations {
-  std::vector<std::vector<double>> values;  // values[measure][sample], measure 0 = geometry
-  std::vector<SurfaceHit> nearest;          // per sample: the tie with the lowest face index
-                                            // (only with DeviationOptions::keep_nearest)
-  std::vector<Feature> nearest_feature;     // per sample: where that point lies on its face
-  std::vector<std::uint32_t> tie_count;     // per sample: number of equidistant target faces
+  std::vector<DeviationArray> values;  // values[measure][sample], measure 0 = geometry
+  std::vector<SurfaceHit> nearest;     // per sample: the tie with the lowest face index
+                                       // (only with DeviationOptions::keep_nearest)
+  PerSample<Feature> nearest_feature;  // per sample: where that point lies on its face
+  PerSample<std::uint32_t> tie_count;  // per sample: number of equidistant target faces
   // Only when Cohen's texture deviation is measured (see metric/texture_deviation.h):
   std::vector<std::uint8_t> cohen_case;  // per sample: a CohenCase
   std::size_t cohen_multiple = 0;        // samples whose UV lies at several distinct points of B

@@ -9,7 +9,7 @@ std::vector<double> vertex_deviation(const TriMesh& sampled, const DirectionResu
   if (d.deviations.values.size() <= measure || d.sample_set.samples.empty())
     throw InvalidInput("per-sample deviations were not kept: cannot colour the mesh");
   const SampleVector& samples = d.sample_set.samples;
-  const std::vector<double>& values = d.deviations.values[measure];
+  const DeviationArray& values = d.deviations.values[measure];
   std::vector<double> out(sampled.num_vertices(), 0.0);
   std::vector<bool> have(sampled.num_vertices(), false);
   for (std::size_t i = 0; i < samples.size(); ++i)

@@ -64,7 +64,8 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
     schedule(static)
   for (std::int64_t i = 0; i < n; ++i) weights[i] = samples.samples[i].weight;
   // Each measure on the whole team (its numbers do not depend on the thread count).
-  r.stats = compute_statistics_of_each(dev.values, weights, o.histogram_bins, o.threads);
+  r.stats = compute_statistics_of_each({dev.values.begin(), dev.values.end()}, weights,
+                                       o.histogram_bins, o.threads);
   for (std::size_t m = 0; m < measures.size(); ++m) {
     const std::size_t i = r.stats[m].argmax;
     const Sample& s = samples.samples[i];

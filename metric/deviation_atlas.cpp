@@ -53,7 +53,7 @@ DeviationAtlas build_deviation_atlas(const TriMesh& m, const DirectionResult& d,
         "the deviation atlas needs scan-conversion face samples (--sampling with 'faces')");
   const double step = d.sample_set.step;
   const SampleVector& samples = d.sample_set.samples;
-  const std::vector<double>& values = d.deviations.values[o.measure];
+  const DeviationArray& values = d.deviations.values[o.measure];
 
   // 1. Each face's sample grid: (n_u, n_v) and its rectangle.
   const std::size_t nf = m.num_faces();

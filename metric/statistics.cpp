@@ -83,7 +83,7 @@ class QuantileBins {
   // The bins' weight sums on a team of more than one thread (one thread adds them in its pass 2):
   // each thread owns a range of bins and sums their weights in sample order, so every bin's sum
   // is the one a single thread takes, whatever the team size.
-  void sum_weights(const std::vector<double>& values, const double* weights, int team) {
+  void sum_weights(ConstSpan<double> values, const double* weights, int team) {
 #pragma omp parallel num_threads(team) if (team > 1)
     {
       const int me = omp_get_thread_num(), size = omp_get_num_threads();
@@ -100,8 +100,8 @@ class QuantileBins {
   // order) reaches q total. The cumulative weight is summed bin by bin (compensated, then
   // element by element inside the quantile's bin); it can differ from a sum in sorted order by
   // an ulp, which matters only where it lies within an ulp of q total.
-  void find(const std::vector<double>& values, const double* weights, double total,
-            const double qs[4], double* outs[4], int team) const {
+  void find(ConstSpan<double> values, const double* weights, double total, const double qs[4],
+            double* outs[4], int team) const {
     int bin[4];
     std::size_t rank[4] = {};
     CompensatedSum below[4];
@@ -222,8 +222,8 @@ class QuantileBins {
   // sample and most of it at the minimum (the exact zeros of coplanar parts), and a rank below
   // that count is the minimum itself. Then a selection per bin among the rest (the k-th value
   // does not depend on the order the threads gathered them in).
-  void select_in_bins(const std::vector<double>& values, const int bin[4],
-                      const std::size_t rank[4], double* outs[4], int team) const {
+  void select_in_bins(ConstSpan<double> values, const int bin[4], const std::size_t rank[4],
+                      double* outs[4], int team) const {
     const std::vector<int> slot = slots_of(bin);
     std::vector<std::size_t> at_lo_part(block_count(n_), 0);
     auto held = gather<std::vector<double>>(
@@ -266,8 +266,8 @@ class QuantileBins {
 // area_weights: the weights if they differ (weighted quantiles and histogram shares), else
 // nullptr. team: the threads that run the blocks.
 template <typename Weight>
-void fill(const std::vector<double>& values, Weight weight, const double* area_weights,
-          int histogram_bins, int team, Statistics& s) {
+void fill(ConstSpan<double> values, Weight weight, const double* area_weights, int histogram_bins,
+          int team, Statistics& s) {
   const bool area_weighted = area_weights != nullptr;
   const std::size_t n = values.size();
   const auto blocks = static_cast<std::int64_t>(block_count(n));
@@ -425,7 +425,7 @@ WeightCheck check_weights(const std::vector<double>& weights, int team) {
   return c;
 }
 
-Statistics statistics_with(const std::vector<double>& values, const std::vector<double>& weights,
+Statistics statistics_with(ConstSpan<double> values, const std::vector<double>& weights,
                            const WeightCheck& c, int histogram_bins, int team) {
   assert(weights.empty() || weights.size() == values.size());
   Statistics s;
@@ -452,20 +452,20 @@ Statistics statistics_with(const std::vector<double>& values, const std::vector<
 
 }  // namespace
 
-Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
+Statistics compute_statistics(ConstSpan<double> values, const std::vector<double>& weights,
                               int histogram_bins, int threads) {
   const int team = team_size(threads, block_count(values.size()));
   return statistics_with(values, weights, check_weights(weights, team), histogram_bins, team);
 }
 
-std::vector<Statistics> compute_statistics_of_each(const std::vector<std::vector<double>>& values,
+std::vector<Statistics> compute_statistics_of_each(const std::vector<ConstSpan<double>>& values,
                                                    const std::vector<double>& weights,
                                                    int histogram_bins, int threads) {
   std::vector<Statistics> out;
   if (values.empty()) return out;
   const int team = team_size(threads, block_count(values[0].size()));
   const WeightCheck c = check_weights(weights, team);
-  for (const std::vector<double>& v : values) {
+  for (const ConstSpan<double>& v : values) {
     assert(v.size() == values[0].size());
     out.push_back(statistics_with(v, weights, c, histogram_bins, team));
   }

@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "metric/value_span.h"
+
 namespace meshdev {
 
 struct Histogram {
@@ -36,12 +38,12 @@ constexpr std::size_t kStatisticsBlock = std::size_t{1} << 15;
 // Precondition: weights empty or the same size as values, weights >= 0. O(n) (quantiles: a
 // histogram pass, then selection inside the quantiles' bins; O(n log n) only if they hold most
 // values); about 3 passes over the values plus, for area weights, one per thread.
-Statistics compute_statistics(const std::vector<double>& values, const std::vector<double>& weights,
+Statistics compute_statistics(ConstSpan<double> values, const std::vector<double>& weights,
                               int histogram_bins = 32, int threads = 1);
 
 // compute_statistics of each of several measures' values over the same samples and weights (each
 // the size of `weights`, or weights empty), the weights checked once. O(n) per measure.
-std::vector<Statistics> compute_statistics_of_each(const std::vector<std::vector<double>>& values,
+std::vector<Statistics> compute_statistics_of_each(const std::vector<ConstSpan<double>>& values,
                                                    const std::vector<double>& weights,
                                                    int histogram_bins = 32, int threads = 1);
 

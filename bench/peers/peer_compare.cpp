@@ -487,8 +487,8 @@ std::string basename(const std::string& p) {
   return s == std::string::npos ? p : p.substr(s + 1);
 }
 
-template <class T>
-std::pair<double, double> mean_max(const std::vector<T>& d) {
+template <class T, class Allocator>
+std::pair<double, double> mean_max(const std::vector<T, Allocator>& d) {
   double sum = 0, mx = 0;
   for (T x : d) sum += static_cast<double>(x), mx = std::max(mx, static_cast<double>(x));
   return {d.empty() ? 0 : sum / static_cast<double>(d.size()), mx};
@@ -588,7 +588,7 @@ int main(int argc, char** argv) {
       r.note = "index " + index->name() + ", plan " + std::to_string(t_plan).substr(0, 5) + " s";
       rows.push_back(r);
       if (d_meshdev.empty()) {
-        d_meshdev = dev.values[0];
+        d_meshdev.assign(dev.values[0].begin(), dev.values[0].end());
         double ties = 0;
         for (auto c : dev.tie_count) ties += c;
         meshdev_ties = ties / static_cast<double>(n);

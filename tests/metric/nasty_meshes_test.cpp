@@ -26,7 +26,7 @@ void expect_finite(const DirectionResult& d) {
   for (const Statistics& s : d.stats)
     for (double v : {s.min, s.max, s.mean, s.rms, s.stddev, s.p50, s.p99, s.weight_sum})
       ASSERT_TRUE(std::isfinite(v)) << d.from << "->" << d.to;
-  for (const std::vector<double>& values : d.deviations.values)
+  for (const DeviationArray& values : d.deviations.values)
     for (double v : values) ASSERT_TRUE(std::isfinite(v)) << d.from << "->" << d.to;
 }
 

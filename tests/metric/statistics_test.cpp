@@ -14,7 +14,7 @@ namespace meshdev {
 namespace {
 
 TEST(Statistics, UnweightedMomentsAndExtremes) {
-  Statistics s = compute_statistics({1, 2, 3, 4}, {});
+  Statistics s = compute_statistics(std::vector<double>{1, 2, 3, 4}, {});
   EXPECT_EQ(s.count, 4u);
   EXPECT_EQ(s.min, 1.0);
   EXPECT_EQ(s.max, 4.0);
@@ -28,7 +28,7 @@ TEST(Statistics, UnweightedMomentsAndExtremes) {
 }
 
 TEST(Statistics, WeightsShiftMeanAndQuantilesButNotExtremes) {
-  Statistics s = compute_statistics({0, 10, 100}, {1, 3, 0});
+  Statistics s = compute_statistics(std::vector<double>{0, 10, 100}, {1, 3, 0});
   EXPECT_DOUBLE_EQ(s.mean, 7.5);
   EXPECT_EQ(s.max, 100.0);  // a zero-weight sample still counts for the maximum
   EXPECT_EQ(s.p50, 10.0);
@@ -252,8 +252,8 @@ TEST(Statistics, OfEachEqualsEachMeasuresOwn) {
       {}, std::vector<double>(n, 0.125), spread, std::vector<double>(n, 0.0)};
   for (std::size_t w = 0; w < weight_sets.size(); ++w) {
     for (int threads : {1, 2}) {
-      const std::vector<Statistics> each =
-          compute_statistics_of_each(measures, weight_sets[w], 16, threads);
+      const std::vector<Statistics> each = compute_statistics_of_each(
+          {measures.begin(), measures.end()}, weight_sets[w], 16, threads);
       ASSERT_EQ(each.size(), measures.size());
       for (std::size_t m = 0; m < measures.size(); ++m) {
         const Statistics own = compute_statistics(measures[m], weight_sets[w], 16, threads);
@@ -293,7 +293,7 @@ TEST(Statistics, WeightedQuantileReachedExactlyAtABinsEnd) {
 }
 
 TEST(Statistics, AllZeroWeightsFallBackToEqualWeights) {
-  Statistics s = compute_statistics({1, 3}, {0, 0});
+  Statistics s = compute_statistics(std::vector<double>{1, 3}, {0, 0});
   EXPECT_DOUBLE_EQ(s.mean, 2.0);
 }
 
