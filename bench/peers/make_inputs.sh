@@ -3,6 +3,8 @@
 # read in place, never copied into the repo):
 #   generated bumpy tori:  torus100k.ply (exactly 100,000 faces), torus1m.ply (exactly 1,000,000)
 #   their simplifications: torus100k_s10k.ply, torus1m_s100k.ply   (meshdev simplify, meshopt)
+#   torus1m_shuffled.ply:  torus1m with its faces in a random order (seed 1), for the cost of a
+#                          reference whose face order has no locality (not one of the pairs)
 #   real meshes:           armadillo.off + armadillo_s5k.ply, bunny00.off + bunny00_s7k.ply
 #                          (Debian's libcgal-demo data), buildings.ply + buildings_s40k.ply
 #                          (../shared/data/large/buildings.obj, converted to PLY for MeshLab)
@@ -41,6 +43,8 @@ echo "generated tori -> $out"
 [[ -s "$out/torus1m.ply" ]] || "$tool" torus 1000 500 "$out/torus1m.ply" >/dev/null
 echo "  torus100k.ply: $(faces "$out/torus100k.ply") faces"
 echo "  torus1m.ply: $(faces "$out/torus1m.ply") faces"
+[[ -s "$out/torus1m_shuffled.ply" ]] ||
+  "$tool" shuffle "$out/torus1m.ply" "$out/torus1m_shuffled.ply" 1 >/dev/null
 simplify "$out/torus100k.ply" "$out/torus100k_s10k.ply" 10000
 simplify "$out/torus1m.ply" "$out/torus1m_s100k.ply" 100000
 

@@ -2,12 +2,18 @@
 //   peer_mesh_tool torus NU NV OUT.ply   bumpy torus with exactly 2 x NU x NV triangles
 //   peer_mesh_tool convert IN OUT.ply    any mesh meshdev reads -> PLY (MeshLab cannot read our
 //                                        OBJ files: simplifiers.md §5)
+//   peer_mesh_tool shuffle IN OUT.ply SEED  the same mesh with its faces in a random order (the
+//                                        order of many tools' output): no face near the one
+//                                        stored before it
 // PLY positions are written as float so that meshdev, Embree, CGAL and MeshLab all read the very
 // same coordinates.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <random>
+#include <stdexcept>
 #include <string>
 
 #include "metric/io/mesh_io.h"
@@ -27,8 +33,8 @@ meshdev::TriMesh bumpy_torus(int nu, int nv) {
     const double u = 2 * kPi * i / nu;
     for (int j = 0; j < nv; ++j) {
       const double v = 2 * kPi * j / nv;
-      const double r = 0.35 * (1 + 0.12 * std::sin(9 * u) * std::sin(4 * v) +
-                               0.04 * std::sin(31 * u + 3 * v));
+      const double r =
+          0.35 * (1 + 0.12 * std::sin(9 * u) * std::sin(4 * v) + 0.04 * std::sin(31 * u + 3 * v));
       const double R = 1 + r * std::cos(v);
       m.positions.push_back({R * std::cos(u), R * std::sin(u), r * std::sin(v)});
     }
@@ -48,7 +54,8 @@ meshdev::TriMesh bumpy_torus(int nu, int nv) {
 int usage() {
   std::fprintf(stderr,
                "usage: peer_mesh_tool torus NU NV OUT.ply   (2*NU*NV faces)\n"
-               "       peer_mesh_tool convert IN OUT.ply\n");
+               "       peer_mesh_tool convert IN OUT.ply\n"
+               "       peer_mesh_tool shuffle IN OUT.ply SEED\n");
   return 2;
 }
 
@@ -70,6 +77,20 @@ int main(int argc, char** argv) {
       const meshdev::TriMesh m = meshdev::read_mesh(argv[2]);
       meshdev::write_ply(argv[3], m, ply);
       std::printf("%s: %zu vertices, %zu faces\n", argv[3], m.num_vertices(), m.num_faces());
+      return 0;
+    }
+    if (argc == 5 && std::string(argv[1]) == "shuffle") {
+      meshdev::TriMesh m = meshdev::read_mesh(argv[2]);
+      for (const meshdev::AttributeChannel& c : m.channels)
+        if (c.storage != meshdev::Storage::kPerVertex)
+          throw std::runtime_error(std::string(argv[2]) + ": channel '" + c.name +
+                                   "' is stored per face or corner; shuffle keeps only "
+                                   "per-vertex channels in step with the faces");
+      std::mt19937_64 rng(std::strtoull(argv[4], nullptr, 10));
+      std::shuffle(m.faces.begin(), m.faces.end(), rng);
+      meshdev::write_ply(argv[3], m, ply);
+      std::printf("%s: %zu vertices, %zu faces (shuffled)\n", argv[3], m.num_vertices(),
+                  m.num_faces());
       return 0;
     }
     return usage();
