@@ -1195,8 +1195,17 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       scratch.slots.empty())
     return 0;
 
-  // The candidates' planes, from the cache (consecutive packets share most of their faces).
+  // The candidates' faces in the mesh (their exact tests read them, in double), prefetched now,
+  // and their corners' positions after the planes below: otherwise a face's first exact test
+  // in the packet waited for its misses one at a time, which the evaluation's long body keeps
+  // from overlapping. Where the target's faces are stored in no spatial order (torus1m's
+  // shuffled) the exact tests took 20 % of the process; peer_compare torus100k -> that mesh
+  // +26 %, -> torus1m itself +2.5 %, the others within noise (docs/performance.md §3).
   const std::size_t candidates = scratch.slots.size();
+  const TriMesh& mesh = *eval_.mesh;
+  for (std::size_t idx = 0; idx < candidates; ++idx)
+    __builtin_prefetch(&mesh.faces[face_of(scratch.slots[idx])]);
+  // The candidates' planes, from the cache (consecutive packets share most of their faces).
   const std::size_t stride = (candidates + kPlaneLanes - 1) / kPlaneLanes * kPlaneLanes;
   scratch.rows.resize(kPlaneRows * stride);
   float* rows = scratch.rows.data();
@@ -1219,6 +1228,10 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   }
   for (int r = 0; r < kPlaneRows; ++r)  // padding lanes: bound +inf
     std::fill(rows + r * stride + candidates, rows + (r + 1) * stride, r == kD ? -kInf : 0.0f);
+  for (std::size_t idx = 0; idx < candidates; ++idx) {
+    const Triangle& t = mesh.faces[face_of(scratch.slots[idx])];
+    for (int corner = 0; corner < 3; ++corner) __builtin_prefetch(&mesh.positions[t[corner]]);
+  }
 
   // Each query: float lower bounds sqrt(h^2 + max(out_e, 0)^2) of all candidates, then the
   // survivors evaluated exactly, smallest bound first, until the bound passes the tie limit.
