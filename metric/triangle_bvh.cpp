@@ -280,11 +280,14 @@ void TriangleBvh::build(int threads) {
   // The root's box and centre box are gathered here, per thread, and merged (min and max: the same
   // for any team), instead of in a pass of the root's split on one thread.
   std::vector<Bounds> part_bounds(static_cast<std::size_t>(team)), part_centres(part_bounds);
+  constexpr std::int64_t kRecordAhead = 8;
 #pragma omp parallel num_threads(team)
   {
     Bounds bounds, centres;
 #pragma omp for schedule(static) nowait
     for (std::int64_t f = 0; f < static_cast<std::int64_t>(n); ++f) {
+      if (f + kRecordAhead < static_cast<std::int64_t>(n))
+        for (std::uint32_t v : m.faces[f + kRecordAhead]) __builtin_prefetch(&frame[v]);
       double lo[3], hi[3];
       for (int k = 0; k < 3; ++k) lo[k] = hi[k] = frame[m.faces[f][0]][k];
       for (int corner = 1; corner < 3; ++corner)
