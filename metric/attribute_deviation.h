@@ -28,7 +28,7 @@ struct DeviationOptions {
 
 // A per-sample array of compute_deviations's result. Its storage is left raw by the resize
 // (metric/raw_storage_allocator.h), and every element is then written once, by the thread that
-// computes that sample: zero-filling the arrays first (37 MB for a million samples and three
+// computes that sample: zero-filling the arrays first (37 MB for a million samples and four
 // measures) took 2-3 % of a 2-thread run even where the allocator reused touched memory
 // (docs/performance.md §3). Read it like any vector; the statistics take it as a ConstSpan.
 template <class T>
