@@ -58,14 +58,19 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
     return ties.front();
   };
 
-  const auto n = static_cast<std::int64_t>(samples.samples.size());
-  std::vector<double> weights(samples.samples.size());
+  // Each measure on the whole team (its numbers do not depend on the thread count); the weights
+  // gathered from the samples only where they differ.
+  const std::vector<ConstSpan<double>> values(dev.values.begin(), dev.values.end());
+  if (samples.equal_weight > 0.0) {
+    r.stats = compute_statistics_of_each(values, samples.equal_weight, o.histogram_bins, o.threads);
+  } else {
+    const auto n = static_cast<std::int64_t>(samples.samples.size());
+    std::vector<double> weights(samples.samples.size());
 #pragma omp parallel for num_threads(o.threads > 0 ? o.threads : omp_get_max_threads()) \
     schedule(static)
-  for (std::int64_t i = 0; i < n; ++i) weights[i] = samples.samples[i].weight;
-  // Each measure on the whole team (its numbers do not depend on the thread count).
-  r.stats = compute_statistics_of_each({dev.values.begin(), dev.values.end()}, weights,
-                                       o.histogram_bins, o.threads);
+    for (std::int64_t i = 0; i < n; ++i) weights[i] = samples.samples[i].weight;
+    r.stats = compute_statistics_of_each(values, weights, o.histogram_bins, o.threads);
+  }
   for (std::size_t m = 0; m < measures.size(); ++m) {
     const std::size_t i = r.stats[m].argmax;
     const Sample& s = samples.samples[i];
@@ -73,10 +78,19 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
     r.max_location.push_back(
         {i, s.point, s.kind, s.face, h.point, h.face, h.feature, dev.values[m][i]});
   }
-  for (std::size_t i = 0; i < dev.nearest_feature.size(); ++i) {
-    ++r.nearest_feature[static_cast<int>(dev.nearest_feature[i])];
-    r.samples_with_ties += dev.tie_count[i] > 1;
+  const auto count = static_cast<std::int64_t>(dev.nearest_feature.size());
+  std::size_t on_vertex = 0, on_edge = 0, on_face = 0, with_ties = 0;
+#pragma omp parallel for num_threads(o.threads > 0 ? o.threads : omp_get_max_threads()) \
+    schedule(static) reduction(+ : on_vertex, on_edge, on_face, with_ties)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const Feature f = dev.nearest_feature[i];
+    on_vertex += f == Feature::kVertex;
+    on_edge += f == Feature::kEdge;
+    on_face += f == Feature::kFace;
+    with_ties += dev.tie_count[i] > 1;
   }
+  r.nearest_feature = {on_vertex, on_edge, on_face};
+  r.samples_with_ties = with_ties;
   r.cohen_multiple = dev.cohen_multiple;
   r.cohen_outside = dev.cohen_outside;
   r.cohen_max_uv_gap = dev.cohen_max_uv_gap;

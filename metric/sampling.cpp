@@ -326,6 +326,9 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
     else if (s.kind == SampleKind::kVertex)
       s.weight = set.edge_count > 0 ? 0.0 : 1.0;
   }
+  const bool one_kind = (set.vertex_count > 0) + (set.edge_count > 0) + (set.face_count > 0) == 1;
+  if (one_kind && (set.vertex_count > 0 || o.faces == FaceSampling::kMonteCarlo))
+    set.equal_weight = set.samples.front().weight;  // vertices weigh 1; Monte Carlo area / count
 
   std::ostringstream d;
   const char* sep = "";

@@ -68,6 +68,9 @@ struct SampleSet {
   SampleVector samples;  // vertex samples first, then edge samples, then face samples
   double step = 0;       // the Δ actually used (absolute), 0 if none was needed
   std::size_t vertex_count = 0, edge_count = 0, face_count = 0;
+  // Where sample_surface knows every sample weighs the same (Monte Carlo face samples alone, or
+  // vertices alone), that weight, so the statistics need not gather it; 0 = read each sample's.
+  double equal_weight = 0;
   std::string description;  // human-readable summary of what was sampled
 };
 

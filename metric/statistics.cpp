@@ -425,6 +425,29 @@ WeightCheck check_weights(const std::vector<double>& weights, int team) {
   return c;
 }
 
+// check_weights of n weights all equal to w, without reading them: every full block holds the
+// same terms, so its compensated sum is taken once and merged as often as check_weights merges
+// the blocks' sums (the same result bit for bit). O(kStatisticsBlock).
+WeightCheck equal_weights(double w, std::size_t n) {
+  WeightCheck c;
+  if (n == 0) return c;
+  auto block_sum = [w](std::size_t count) {
+    CompensatedSum sum;
+    for (std::size_t i = 0; i < count; ++i) sum.add(w);
+    return sum;
+  };
+  const std::size_t blocks = block_count(n);
+  const CompensatedSum full = block_sum(kStatisticsBlock);
+  CompensatedSum wsum;
+  for (std::size_t b = 0; b + 1 < blocks; ++b) wsum.merge(full);
+  wsum.merge(block_sum(block_end(static_cast<std::int64_t>(blocks - 1), n) -
+                       block_begin(static_cast<std::int64_t>(blocks - 1))));
+  c.sum = wsum.value();
+  c.uniform = !(c.sum > 0.0);
+  c.w0 = w;
+  return c;
+}
+
 Statistics statistics_with(ConstSpan<double> values, const std::vector<double>& weights,
                            const WeightCheck& c, int histogram_bins, int team) {
   assert(weights.empty() || weights.size() == values.size());
@@ -468,6 +491,21 @@ std::vector<Statistics> compute_statistics_of_each(const std::vector<ConstSpan<d
   for (const ConstSpan<double>& v : values) {
     assert(v.size() == values[0].size());
     out.push_back(statistics_with(v, weights, c, histogram_bins, team));
+  }
+  return out;
+}
+
+std::vector<Statistics> compute_statistics_of_each(const std::vector<ConstSpan<double>>& values,
+                                                   double equal_weight, int histogram_bins,
+                                                   int threads) {
+  assert(equal_weight >= 0.0);
+  std::vector<Statistics> out;
+  if (values.empty()) return out;
+  const int team = team_size(threads, block_count(values[0].size()));
+  const WeightCheck c = equal_weights(equal_weight, values[0].size());
+  for (const ConstSpan<double>& v : values) {
+    assert(v.size() == values[0].size());
+    out.push_back(statistics_with(v, {}, c, histogram_bins, team));
   }
   return out;
 }

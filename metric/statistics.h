@@ -47,4 +47,11 @@ std::vector<Statistics> compute_statistics_of_each(const std::vector<ConstSpan<d
                                                    const std::vector<double>& weights,
                                                    int histogram_bins = 32, int threads = 1);
 
+// compute_statistics_of_each with every sample weighing `equal_weight` (>= 0; what Monte Carlo
+// sampling gives): the same result, bit for bit, as a weights vector holding it once per sample,
+// without making or reading one. O(n) per measure.
+std::vector<Statistics> compute_statistics_of_each(const std::vector<ConstSpan<double>>& values,
+                                                   double equal_weight, int histogram_bins = 32,
+                                                   int threads = 1);
+
 }  // namespace meshdev

@@ -109,6 +109,27 @@ TEST(Sampling, MonteCarloDependsOnlyOnTheSeed) {
   EXPECT_NE(z.samples[0].point, x.samples[0].point);
 }
 
+// The set's equal_weight is every sample's weight where the sampling gives them one weight
+// (Monte Carlo faces alone, vertices alone), and 0 (read each sample's) where it does not.
+TEST(Sampling, EqualWeightIsSetOnlyWhereEverySampleWeighsTheSame) {
+  TriMesh m = test::icosphere(2);
+  auto sample = [&](bool vertices, FaceSampling faces) {
+    SamplingOptions o;
+    o.vertices = vertices;
+    o.faces = faces;
+    o.target_count = 5000;
+    return sample_surface(m, o, 2.0);
+  };
+  for (const SampleSet& set :
+       {sample(false, FaceSampling::kMonteCarlo), sample(true, FaceSampling::kNone)}) {
+    ASSERT_FALSE(set.samples.empty());
+    EXPECT_GT(set.equal_weight, 0.0);
+    for (const Sample& s : set.samples) ASSERT_EQ(s.weight, set.equal_weight);
+  }
+  EXPECT_EQ(sample(true, FaceSampling::kMonteCarlo).equal_weight, 0.0);
+  EXPECT_EQ(sample(false, FaceSampling::kScanConversion).equal_weight, 0.0);
+}
+
 // Faces are sampled in parallel, each into its own slots: the set is the one a serial pass makes
 // (face by face, in face order) for any thread count.
 TEST(Sampling, FaceSamplesAreTheSameForAnyThreadCount) {

@@ -279,6 +279,47 @@ TEST(Statistics, OfEachEqualsEachMeasuresOwn) {
   EXPECT_TRUE(compute_statistics_of_each({}, {}).empty());
 }
 
+// One weight shared by every sample, passed as a number: the statistics of a weights vector
+// holding it once per sample, bit for bit (weight sums over full blocks and a partial one).
+TEST(Statistics, OfEachWithOneEqualWeightEqualsItsVectorTwin) {
+  std::mt19937_64 rng(11);
+  std::exponential_distribution<double> e(3.0);
+  for (const std::size_t n :
+       {std::size_t{1}, std::size_t{1000}, kStatisticsBlock, 3 * kStatisticsBlock + 17}) {
+    std::vector<std::vector<double>> measures(2, std::vector<double>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      measures[0][i] = e(rng);
+      measures[1][i] = std::floor(e(rng) * 10.0);
+    }
+    const std::vector<ConstSpan<double>> spans(measures.begin(), measures.end());
+    for (const double w : {0.0, 0.1, 0.125, 3.7e-6}) {
+      for (int threads : {1, 2}) {
+        const std::vector<Statistics> got = compute_statistics_of_each(spans, w, 16, threads);
+        const std::vector<Statistics> twin =
+            compute_statistics_of_each(spans, std::vector<double>(n, w), 16, threads);
+        ASSERT_EQ(got.size(), twin.size());
+        for (std::size_t m = 0; m < got.size(); ++m) {
+          const std::string where = "n " + std::to_string(n) + " w " + std::to_string(w) +
+                                    " threads " + std::to_string(threads) + " measure " +
+                                    std::to_string(m);
+          const Statistics &a = got[m], &b = twin[m];
+          EXPECT_EQ(a.count, b.count) << where;
+          EXPECT_EQ(a.weight_sum, b.weight_sum) << where;
+          EXPECT_EQ(a.area_weighted, b.area_weighted) << where;
+          const double x[] = {a.min, a.max, a.mean, a.variance, a.stddev,
+                              a.rms, a.p50, a.p90,  a.p95,      a.p99};
+          const double y[] = {b.min, b.max, b.mean, b.variance, b.stddev,
+                              b.rms, b.p50, b.p90,  b.p95,      b.p99};
+          for (int k = 0; k < 10; ++k) EXPECT_EQ(x[k], y[k]) << where << " field " << k;
+          EXPECT_EQ(a.argmax, b.argmax) << where;
+          EXPECT_EQ(a.histogram.counts, b.histogram.counts) << where;
+          EXPECT_EQ(a.histogram.weight_fraction, b.histogram.weight_fraction) << where;
+        }
+      }
+    }
+  }
+}
+
 // A cumulative weight that reaches q of the total exactly at the end of a bin: that bin's last
 // value is the quantile (32 values, 2 bins; weights 0.5, 1.5, ... below 16, then 1).
 TEST(Statistics, WeightedQuantileReachedExactlyAtABinsEnd) {
