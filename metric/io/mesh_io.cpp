@@ -74,7 +74,8 @@ Format by_content(std::string_view data) {
 }  // namespace
 
 TriMesh read_mesh(const std::string& path) {
-  const std::string data = io_detail::read_file_bytes(path);
+  const io_detail::FileBytes bytes(path);
+  const std::string_view data = bytes.view();
   if (data.empty()) throw ParseError(path, "", "empty file");
   const Format ext = by_extension(path);
   Format content = by_content(data);

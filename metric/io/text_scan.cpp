@@ -1,8 +1,10 @@
 #include "metric/io/text_scan.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -15,38 +17,92 @@
 
 namespace meshdev::io_detail {
 
-std::string read_file_bytes(const std::string& path) {
-  auto fail = [&path](const char* what, int err) {
-    throw IoError(path + ": " + what + ": " + std::strerror(err));
-  };
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) fail("cannot open", errno);
+namespace {
+
+[[noreturn]] void io_fail(const std::string& path, const char* what, int err) {
+  throw IoError(path + ": " + what + ": " + std::strerror(err));
+}
+
+// An open descriptor, closed when it goes out of scope.
+struct Descriptor {
+  int fd = -1;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+// Opens `path` for reading and stats it; a directory is refused as open(2) would refuse writing.
+struct stat open_for_reading(const std::string& path, Descriptor& d) {
+  d.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (d.fd < 0) io_fail(path, "cannot open", errno);
   struct stat st {};
-  if (::fstat(fd, &st) != 0) {
-    int err = errno;
-    ::close(fd);
-    fail("cannot stat", err);
-  }
-  if (S_ISDIR(st.st_mode)) {
-    ::close(fd);
-    fail("cannot open", EISDIR);
-  }
+  if (::fstat(d.fd, &st) != 0) io_fail(path, "cannot stat", errno);
+  if (S_ISDIR(st.st_mode)) io_fail(path, "cannot open", EISDIR);
+  return st;
+}
+
+// Everything left to read from d (straight into the string: one copy from the page cache).
+std::string read_all(const std::string& path, const Descriptor& d, const struct stat& st) {
   std::string data;
-  if (S_ISREG(st.st_mode)) data.reserve(static_cast<std::size_t>(st.st_size));
-  char buffer[1 << 16];
+  if (S_ISREG(st.st_mode)) data.resize(static_cast<std::size_t>(st.st_size));
+  std::size_t have = 0;
   for (;;) {
-    ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (data.size() - have < (1 << 16))
+      data.resize(std::max<std::size_t>(2 * data.size(), 1 << 16));
+    const ssize_t n = ::read(d.fd, data.data() + have, data.size() - have);
     if (n < 0) {
       if (errno == EINTR) continue;
-      int err = errno;
-      ::close(fd);
-      fail("cannot read", err);
+      io_fail(path, "cannot read", errno);
     }
     if (n == 0) break;
-    data.append(buffer, static_cast<std::size_t>(n));
+    have += static_cast<std::size_t>(n);
   }
-  ::close(fd);
+  data.resize(have);
   return data;
+}
+
+}  // namespace
+
+std::string read_file_bytes(const std::string& path) {
+  Descriptor d;
+  const struct stat st = open_for_reading(path, d);
+  return read_all(path, d, st);
+}
+
+FileBytes::FileBytes(const std::string& path) {
+  Descriptor d;
+  const struct stat st = open_for_reading(path, d);
+  if (S_ISREG(st.st_mode) && st.st_size > 0) {
+    const auto size = static_cast<std::size_t>(st.st_size);
+#ifdef MESHDEV_EXACT_FILE_BUFFER
+    // Sanitizer builds: the bytes in a heap block of exactly the file's size, so a parser's read
+    // one byte past the end is reported (in a mapping it would read the page's zero tail).
+    exact_ = std::make_unique<char[]>(size);
+    std::size_t have = 0;
+    while (have < size) {
+      const ssize_t n = ::read(d.fd, exact_.get() + have, size - have);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) io_fail(path, "cannot read", errno);
+      if (n == 0) break;  // the file shrank since fstat
+      have += static_cast<std::size_t>(n);
+    }
+    map_ = exact_.get();
+    size_ = have;
+    return;
+#endif
+    void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, d.fd, 0);
+    if (p != MAP_FAILED) {
+      ::madvise(p, size, MADV_SEQUENTIAL | MADV_WILLNEED);  // a hint: its failure costs nothing
+      map_ = static_cast<const char*>(p);
+      size_ = size;
+      return;
+    }
+  }
+  copy_ = read_all(path, d, st);
+}
+
+FileBytes::~FileBytes() {
+  if (map_ != nullptr && !exact_) ::munmap(const_cast<char*>(map_), size_);
 }
 
 std::string_view strip_bom(std::string_view text) {
