@@ -222,7 +222,13 @@ class PlyParser {
   // read_binary_records for a face element of one index list: count_at and item_at decode the
   // list count and an index at a byte address.
   template <class CountAt, class ItemAt>
-  std::uint64_t read_index_lists(const Element& e, CountAt count_at, ItemAt item_at);
+  std::uint64_t read_index_lists(const Element& e, std::uint64_t first_record, CountAt count_at,
+                                 ItemAt item_at);
+  // read_binary_records for face records of the commonest layout (a uchar count, int or uint
+  // indices, the host's byte order) while they are triangles: each goes straight into
+  // triangles_, the mesh's faces as they will be, without corner lists, offsets or a fan pass.
+  // Returns how many it read; the caller hands the rest to read_index_lists.
+  std::uint64_t read_triangle_records(const Element& e, bool signed_indices);
   // Stores the finite value d of scalar property p of vertex i.
   void store_vertex_value(const Property& p, std::size_t i, double d);
 
@@ -268,6 +274,10 @@ class PlyParser {
   int face_color_out_ = -1, face_alpha_out_ = -1;
   std::vector<std::uint32_t> corners_;
   std::vector<std::size_t> first_ = {0};
+  // Faces read by read_triangle_records; while faces_are_triangles_, they are all the faces read
+  // (corners_ and first_ stay empty), else they have been moved into corners_ and first_.
+  std::vector<Triangle> triangles_;
+  bool faces_are_triangles_ = false;
   std::vector<double> corner_uv_;
   bool has_corner_uv_ = false;
   std::uint64_t vertex_count_ = 0;
@@ -573,9 +583,25 @@ std::uint64_t PlyParser::read_binary_records(const Element& e, bool is_vertex, b
       if (p.is_list) return 0;
     const std::uint64_t record = min_record_size(e, header_.format);  // fixed: no lists
     const std::uint64_t whole = std::min<std::uint64_t>(e.count, (size - pos_) / record);
+    // The commonest layout, float x, y, z first in the host's byte order, loaded at once.
+    auto is_float = [&](std::size_t k, Target t) {
+      return e.props[k].type == PlyType::kFloat32 && e.props[k].target == t;
+    };
+    const std::size_t skip = !swap_ && e.props.size() >= 3 && is_float(0, Target::kX) &&
+                                     is_float(1, Target::kY) && is_float(2, Target::kZ)
+                                 ? 3
+                                 : 0;
     for (std::uint64_t r = 0; r < whole; ++r, pos_ += record) {
       std::size_t at = pos_;
-      for (const Property& p : e.props) {
+      if (skip == 3) {
+        float xyz[3];
+        std::memcpy(xyz, data + at, sizeof xyz);
+        if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2])) return r;
+        positions_[r] = {xyz[0], xyz[1], xyz[2]};
+        at += sizeof xyz;
+      }
+      for (std::size_t k = skip; k < e.props.size(); ++k) {
+        const Property& p = e.props[k];
         const double d = decode_binary(p.type, data + at, swap_).d;
         at += type_size(p.type);
         if (p.target == Target::kSkip) continue;
@@ -587,27 +613,64 @@ std::uint64_t PlyParser::read_binary_records(const Element& e, bool is_vertex, b
   }
   if (!is_face || e.props.size() != 1 || e.props[0].target != Target::kIndices) return 0;
   const Property& p = e.props[0];
+  const bool common = !swap_ && p.count_type == PlyType::kUint8 &&
+                      (p.type == PlyType::kInt32 || p.type == PlyType::kUint32);
+  std::uint64_t done = 0;
+  if (common && first_.size() == 1) {
+    faces_are_triangles_ = true;
+    done = read_triangle_records(e, p.type == PlyType::kInt32);
+    if (done == e.count) return done;
+    // A polygon or a bad record: the triangles become corner lists, and the rest goes on below.
+    faces_are_triangles_ = false;
+    for (const Triangle& t : triangles_) {
+      corners_.insert(corners_.end(), t.begin(), t.end());
+      first_.push_back(corners_.size());
+    }
+    triangles_ = {};
+  }
   // The common layouts with the types fixed at compile time; any other through decode_binary.
-  if (!swap_ && p.count_type == PlyType::kUint8 && p.type == PlyType::kInt32)
+  if (common && p.type == PlyType::kInt32)
     return read_index_lists(
-        e, [](const char* at) { return load_binary<std::uint8_t>(at, false); },
+        e, done, [](const char* at) { return load_binary<std::uint8_t>(at, false); },
         [](const char* at) { return load_binary<std::int32_t>(at, false); });
-  if (!swap_ && p.count_type == PlyType::kUint8 && p.type == PlyType::kUint32)
+  if (common)
     return read_index_lists(
-        e, [](const char* at) { return load_binary<std::uint8_t>(at, false); },
+        e, done, [](const char* at) { return load_binary<std::uint8_t>(at, false); },
         [](const char* at) { return load_binary<std::uint32_t>(at, false); });
   return read_index_lists(
-      e, [&](const char* at) { return decode_binary(p.count_type, at, swap_).i; },
+      e, done, [&](const char* at) { return decode_binary(p.count_type, at, swap_).i; },
       [&](const char* at) { return decode_binary(p.type, at, swap_).i; });
 }
 
+std::uint64_t PlyParser::read_triangle_records(const Element& e, bool signed_indices) {
+  constexpr std::size_t kRecord = 1 + 3 * sizeof(std::uint32_t);
+  const std::uint64_t whole = std::min<std::uint64_t>(e.count, (data_.size() - pos_) / kRecord);
+  // Indices read as unsigned: a negative int32 has its top bit set, refused below.
+  const std::uint32_t limit = signed_indices ? static_cast<std::uint32_t>(std::min<std::uint64_t>(
+                                                   vertex_count_, std::uint64_t{1} << 31))
+                                             : static_cast<std::uint32_t>(vertex_count_);
+  triangles_.reserve(e.count);
+  const char* at = data_.data() + pos_;
+  std::uint64_t r = 0;
+  for (; r < whole; ++r, at += kRecord) {
+    if (static_cast<unsigned char>(*at) != 3) break;
+    Triangle t;
+    std::memcpy(t.data(), at + 1, sizeof t);
+    if (t[0] >= limit || t[1] >= limit || t[2] >= limit) break;
+    triangles_.push_back(t);
+  }
+  pos_ = static_cast<std::size_t>(at - data_.data());
+  return r;
+}
+
 template <class CountAt, class ItemAt>
-std::uint64_t PlyParser::read_index_lists(const Element& e, CountAt count_at, ItemAt item_at) {
+std::uint64_t PlyParser::read_index_lists(const Element& e, std::uint64_t first_record,
+                                          CountAt count_at, ItemAt item_at) {
   const Property& p = e.props[0];
   const char* const data = data_.data();
   const std::size_t size = data_.size();
   const std::size_t count_size = type_size(p.count_type), item_size = type_size(p.type);
-  for (std::uint64_t r = 0; r < e.count; ++r) {
+  for (std::uint64_t r = first_record; r < e.count; ++r) {
     if (size - pos_ < count_size) return r;
     const auto n = static_cast<std::int64_t>(count_at(data + pos_));
     if (n < 3 || static_cast<std::uint64_t>(n) > (size - pos_ - count_size) / item_size) return r;
@@ -772,9 +835,14 @@ TriMesh PlyParser::parse() {
   TriMesh mesh;
   mesh.source_file = path_;
   mesh.positions = std::move(positions_);
+  if (faces_are_triangles_) {  // (no face or corner values: read_triangle_records' layout)
+    assert(face_out_.empty() && !has_corner_uv_ && first_.size() == 1);
+    mesh.faces = std::move(triangles_);
+    mesh.source_polygons = mesh.faces.size();
+  }
   const std::size_t polygons = first_.size() - 1;
-  mesh.source_polygons = polygons;
-  mesh.faces.reserve(corners_.size() - 2 * polygons);
+  if (!faces_are_triangles_) mesh.source_polygons = polygons;
+  mesh.faces.reserve(mesh.faces.size() + corners_.size() - 2 * polygons);
   for (std::size_t p = 0; p < polygons; ++p)
     for (std::size_t c = first_[p] + 1; c + 1 < first_[p + 1]; ++c)
       mesh.faces.push_back({corners_[first_[p]], corners_[c], corners_[c + 1]});

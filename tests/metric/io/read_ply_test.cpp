@@ -313,6 +313,86 @@ TEST(ReadPly, BinaryFastPathAgreesWithTheGenericLoop) {
   expect_parse_error(write_file(dir, "sv.ply", short_vertices), "declares 4 records");
 }
 
+// Binary files whose faces are all triangles (uchar count, int or uint indices) are read into
+// the faces directly; x, y, z floats first at once. The mesh, the polygon count and every error
+// (its message and byte) are the generic loop's, wherever the first odd record lies.
+TEST(ReadPly, TriangleAndXyzFastPathsAgreeWithTheGenericLoop) {
+  std::string dir = scratch_dir("ply_triangles");
+  const float xyz[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0.5f}, {2, 0, 1}};
+  auto vertices = [&](float x2) {
+    std::string b;
+    for (int v = 0; v < 5; ++v)
+      for (int k = 0; k < 3; ++k) put(b, v == 2 && k == 0 ? x2 : xyz[v][k]);
+    return b;
+  };
+  auto faces = [](const std::vector<std::vector<std::int64_t>>& list, bool unsigned_items) {
+    std::string b;
+    for (const std::vector<std::int64_t>& f : list) {
+      put(b, static_cast<std::uint8_t>(f.size()));
+      for (std::int64_t i : f)
+        unsigned_items ? put(b, static_cast<std::uint32_t>(i))
+                       : put(b, static_cast<std::int32_t>(i));
+    }
+    return b;
+  };
+  auto ascii = [&](const std::vector<std::vector<std::int64_t>>& list) {
+    std::string body;
+    for (const auto& v : xyz)
+      body += std::to_string(v[0]) + " " + std::to_string(v[1]) + " " + std::to_string(v[2]) + "\n";
+    for (const auto& f : list) {
+      body += std::to_string(f.size());
+      for (std::int64_t i : f) body += " " + std::to_string(i);
+      body += "\n";
+    }
+    return read_mesh(write_file(
+        dir, "twin.ply", header("ascii", kXyz, 5, kIdx, static_cast<int>(list.size())) + body));
+  };
+  const std::vector<std::vector<std::vector<std::int64_t>>> layouts = {
+      {{0, 1, 2}, {0, 2, 3}, {1, 4, 2}},        // triangles only
+      {{0, 1, 2}, {0, 1, 2, 3}, {1, 4, 2}},     // a quad after a triangle
+      {{0, 1, 2, 3}, {1, 4, 2}, {0, 2, 3}},     // a quad first
+      {{0, 1, 2}, {0, 2, 3}, {0, 1, 4, 2, 3}},  // a pentagon last
+  };
+  for (bool unsigned_items : {false, true}) {
+    const std::string idx = unsigned_items ? "property list uchar uint vertex_indices\n" : kIdx;
+    for (const auto& layout : layouts) {
+      const TriMesh twin = ascii(layout);
+      const std::string h =
+          header("binary_little_endian", kXyz, 5, idx, static_cast<int>(layout.size()));
+      const TriMesh m = read_mesh(
+          write_file(dir, "b.ply", h + vertices(xyz[2][0]) + faces(layout, unsigned_items)));
+      EXPECT_EQ(m.positions, twin.positions);
+      EXPECT_EQ(m.faces, twin.faces);
+      EXPECT_EQ(m.source_polygons, layout.size());
+    }
+    // The second triangle is bad: the generic loop's message at its byte (after the bad value).
+    const std::string h = header("binary_little_endian", kXyz, 5, idx, 3);
+    const std::size_t faces_at = h.size() + 5 * 12;
+    const std::int64_t bad[] = {5, -1, 2147483648};
+    for (const std::int64_t index : bad) {
+      const std::string text =
+          unsigned_items || index < 0
+              ? std::to_string(unsigned_items && index < 0 ? 4294967295 : index)
+              : std::to_string(static_cast<std::int32_t>(index));
+      expect_parse_error(
+          write_file(dir, "i.ply",
+                     h + vertices(xyz[2][0]) +
+                         faces({{0, 1, 2}, {0, index, 3}, {1, 4, 2}}, unsigned_items)),
+          "byte " + std::to_string(faces_at + 13 + 1 + 8) + ": face 1: vertex index " + text +
+              " out of range (5 vertices)");
+    }
+    expect_parse_error(
+        write_file(dir, "n.ply",
+                   h + vertices(xyz[2][0]) + faces({{0, 1, 2}, {0, 1}, {1, 4, 2}}, unsigned_items)),
+        "byte " + std::to_string(faces_at + 13 + 1) + ": face 1: 2 corners");
+  }
+  const std::string h = header("binary_little_endian", kXyz, 5, kIdx, 1);
+  expect_parse_error(
+      write_file(dir, "nan.ply",
+                 h + vertices(std::numeric_limits<float>::quiet_NaN()) + faces({{0, 1, 2}}, false)),
+      "byte " + std::to_string(h.size() + 2 * 12 + 4) + ": vertex 2: property 'x' is not finite");
+}
+
 TEST(ReadPlyReal, StanfordBunnyWithScannerScalars) {
   std::string data = shared_data_dir();
   if (data.empty()) GTEST_SKIP() << "shared data folder (../shared/data) not present";
