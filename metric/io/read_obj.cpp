@@ -1,5 +1,6 @@
 #include "metric/io/read_obj.h"
 
+#include <cassert>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -33,9 +34,9 @@ bool is_ignored_keyword(std::string_view k) {
 
 // The polygons as read, before triangulation; indices already 0-based.
 struct ObjPolygons {
-  std::vector<std::uint32_t> v, vt, vn;  // one entry per corner; vt/vn are kNone if absent
-  std::vector<std::size_t> first;        // first corner of polygon i; first.back() = corners
-  std::vector<std::size_t> line;         // line of polygon i
+  std::vector<std::uint32_t> v;       // one entry per corner
+  std::vector<std::uint32_t> vt, vn;  // one per corner where the faces reference them, else empty
+  std::vector<std::size_t> first;     // first corner of polygon i; first.back() = corners
 };
 
 class ObjParser {
@@ -61,6 +62,9 @@ class ObjParser {
   std::uint32_t resolve(std::string_view token, std::size_t count, const char* what) const;
   void check_deferred(const std::vector<std::uint32_t>& ids, std::size_t count,
                       const char* what) const;
+  // The line of polygon p: the p-th 'f' line (a face that does not parse ends the parse), found
+  // by reading the text again, since only an error message needs it. O(file size).
+  std::size_t line_of_polygon(std::size_t p) const;
   void build_channel(TriMesh& mesh, const std::vector<std::uint32_t>& ids,
                      const std::vector<double>& values, int dim, const char* name,
                      AttributeKind kind) const;
@@ -222,8 +226,10 @@ void ObjParser::parse_face(Tokens& t) {
       fail("face corners " + std::to_string(corners + 1) +
            " and 1 differ in which of vt/vn they reference (" + quoted(tok) + ")");
     polys_.v.push_back(resolve(a, positions_.size(), "vertex"));
-    polys_.vt.push_back(slash_vt ? resolve(b, uvs_.size() / 2, "texture coordinate") : kNone);
-    polys_.vn.push_back(slash_vn ? resolve(c, normals_.size() / 3, "normal") : kNone);
+    // (Every face references vt and vn as the first one does, or the parse fails below: so vt
+    // and vn end up with an entry per corner or none.)
+    if (slash_vt) polys_.vt.push_back(resolve(b, uvs_.size() / 2, "texture coordinate"));
+    if (slash_vn) polys_.vn.push_back(resolve(c, normals_.size() / 3, "normal"));
     ++corners;
   }
   if (corners < 3) {
@@ -241,15 +247,29 @@ void ObjParser::parse_face(Tokens& t) {
          " but not so on the first face (line " + std::to_string(first_face_line_) +
          "); every face must reference the same attributes");
   polys_.first.push_back(polys_.v.size());
-  polys_.line.push_back(lines_.line_number());
+}
+
+std::size_t ObjParser::line_of_polygon(std::size_t p) const {
+  LineReader lines(io_detail::strip_bom(content_));
+  std::string_view line;
+  std::size_t faces = 0;
+  while (lines.next(line)) {
+    Tokens t(line);
+    std::string_view key;
+    if (t.next(key) && key == "f" && faces++ == p) return lines.line_number();
+  }
+  assert(false && "fewer 'f' lines than polygons");
+  return 0;
 }
 
 void ObjParser::check_deferred(const std::vector<std::uint32_t>& ids, std::size_t count,
                                const char* what) const {
+  if (ids.empty()) return;  // (the faces do not reference these)
+  assert(ids.size() == polys_.v.size());
   for (std::size_t p = 0; p + 1 < polys_.first.size(); ++p)
     for (std::size_t c = polys_.first[p]; c < polys_.first[p + 1]; ++c)
-      if (ids[c] != kNone && ids[c] >= count)
-        throw ParseError(path_, "line " + std::to_string(polys_.line[p]),
+      if (ids[c] >= count)
+        throw ParseError(path_, "line " + std::to_string(line_of_polygon(p)),
                          std::string(what) + " index " + std::to_string(ids[c] + 1ull) +
                              " out of range (" + std::to_string(count) + " defined)");
 }

@@ -111,6 +111,33 @@ TEST(ReadObj, MaterialWithWindowsPathAndMissingLibrary) {
   EXPECT_TRUE(n.texture_file.empty());
 }
 
+// Positive indices may name elements defined later, so they are checked after the last line;
+// the error still names the line of the face that used the index (found by reading the text
+// again), for vertices, texture coordinates and normals alike, and faces that reference no vt or
+// vn keep none.
+TEST(ReadObj, IndicesCheckedAtTheEndNameTheirFacesLine) {
+  std::string dir = scratch_dir("obj_deferred");
+  const TriMesh ahead = read_mesh(write_file(
+      dir, "ahead.obj", "f 1 2 3\n# a comment\nf 3 2 4\n" + std::string(kTri) + "v 1 1 0\n"));
+  EXPECT_EQ(ahead.num_faces(), 2u);
+  EXPECT_EQ(ahead.faces[1], (Triangle{2, 1, 3}));
+  EXPECT_EQ(ahead.channel("texcoord"), nullptr);
+  EXPECT_EQ(ahead.channel("normal"), nullptr);
+  expect_parse_error(
+      write_file(dir, "v.obj", "f 1 2 3\n\nf 1 2 9\n" + std::string(kTri) + "f 1 2 3\n"),
+      "line 3: vertex index 9 out of range (3 defined)");
+  const std::string body = std::string(kTri) + "vt 0 0\nvn 0 0 1\n";
+  expect_parse_error(write_file(dir, "vt.obj", "f 1/1/1 2/1/1 3/1/1\nf 1/1/1 2/5/1 3/1/1\n" + body),
+                     "line 2: texture coordinate index 5 out of range (1 defined)");
+  expect_parse_error(
+      write_file(dir, "vn.obj", "f 1/1/1 2/1/1 3/1/1\ng x\nf 1/1/1 2/1/1 3/1/7\n" + body),
+      "line 3: normal index 7 out of range (1 defined)");
+  const TriMesh both = read_mesh(write_file(dir, "both.obj", "f 1/1/1 2/1/1 3/1/1\n" + body));
+  ASSERT_NE(both.channel("texcoord"), nullptr);
+  ASSERT_NE(both.channel("normal"), nullptr);
+  EXPECT_EQ(both.channel("normal")->element(0)[2], 1.0);
+}
+
 TEST(ReadObj, MalformedInputsNameFileLineAndProblem) {
   std::string dir = scratch_dir("obj_bad");
   expect_parse_error(write_file(dir, "empty.obj", ""), "empty file");
