@@ -150,30 +150,40 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   // took 2-6 ms for torus1m's 1M faces, 2-6 % of torus1m -> 100k's 2-thread query phase, the
   // vertices' 0.4-0.8 ms: docs/performance.md §3.)
   const BoundingBox sample_box = position_bounding_box(ref, threads);
-  // Sets of more than one chunk are first put in order of their coarse Morton cells (a stable
-  // counting sort): samples generated face by face are near each other only if the faces are,
-  // and a chunk cut from that order covers a few cells, which its own Morton order then walks.
+  // Sets of more than one chunk whose order is not spatially coherent are first put in order of
+  // their coarse Morton cells (a stable counting sort): samples generated face by face are near
+  // each other only if the faces are (a mesh whose faces are stored in no spatial order), and a
+  // chunk cut from the bucket order covers a few cells, which its own Morton order then walks.
+  // Where the order is coherent (faces stored along the surface, as most meshes store them) the
+  // bucket order only costs: the samples and their results are then read and written out of
+  // order (`meshdev compare` forward queries, 1M Monte Carlo samples: buildings 0.055 s without
+  // it against 0.076-0.079 s with it, torus100k -> 10k 0.061 against 0.075; torus1m with its
+  // faces shuffled 0.12 s with it against 0.47-0.51 without; docs/performance.md §3). Coherence
+  // is probed on pairs of consecutive samples: in a coherent order fewer than an eighth of them
+  // lie in different cells of the 4 x 4 x 4 grid over the box (0-13 % on the test meshes), in a
+  // shuffled one most do (64-85 %); a third is the threshold (a wrong guess costs speed only).
   // Only where samples are dense on B (at least kDense per face), where packets form and the
   // order pays: elsewhere queries go one by one and reading the samples and writing their
-  // results out of order cost more (torus100k -> 1m: -7 %). A set whose every kProbe-th sample
-  // is already in bucket order is taken as ordered (a set sorted along the curve; a wrong guess
-  // costs speed only). `visit[k]` is the k-th sample queried (empty: the k-th).
+  // results out of order cost more (torus100k -> 1m: -7 %). `visit[k]` is the k-th sample
+  // queried (empty: the k-th).
   std::vector<std::uint32_t> visit;
   const MortonGrid grid(sample_box);
-  auto probe_ordered = [&] {
+  auto probe_incoherent = [&] {
     constexpr std::size_t kProbe = 64;
-    for (std::size_t i = kProbe; i < n; i += kProbe)
-      if (grid.bucket(samples.samples[i].point) < grid.bucket(samples.samples[i - kProbe].point))
-        return false;
-    return true;
+    constexpr int kCoarseShift = 3 * (MortonGrid::kBucketLevels - 2);  // 4 x 4 x 4 cells
+    std::size_t pairs = 0, apart = 0;
+    for (std::size_t i = kProbe; i < n; i += kProbe, ++pairs)
+      apart += grid.bucket(samples.samples[i].point) >> kCoarseShift !=
+               grid.bucket(samples.samples[i - 1].point) >> kCoarseShift;
+    return 3 * apart > pairs;
   };
   constexpr std::size_t kDense = 8;
-  if (n > kChunk && n >= kDense * tgt.faces.size() && !probe_ordered()) {
+  if (n > kChunk && n >= kDense * tgt.faces.size() && probe_incoherent()) {
     std::vector<std::uint32_t> bucket(n);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
       bucket[i] = grid.bucket(samples.samples[i].point);
-    stable_bucket_order(bucket.data(), n, visit);
+    out.cell_order = stable_bucket_order(bucket.data(), n, visit);
   }
   auto sample_at = [&visit](std::size_t k) -> std::size_t { return visit.empty() ? k : visit[k]; };
   // Whether the chunks prefetch the reference's per-vertex channel values (below).

@@ -41,6 +41,9 @@ struct SampleDeviations {
                                        // (only with DeviationOptions::keep_nearest)
   PerSample<Feature> nearest_feature;  // per sample: where that point lies on its face
   PerSample<std::uint32_t> tie_count;  // per sample: number of equidistant target faces
+  // Whether the samples were queried in the order of their coarse Morton cells (their own order
+  // was not spatially coherent) rather than in chunks of their own order. Speed only.
+  bool cell_order = false;
   // Only when Cohen's texture deviation is measured (see metric/texture_deviation.h):
   std::vector<std::uint8_t> cohen_case;  // per sample: a CohenCase
   std::size_t cohen_multiple = 0;        // samples whose UV lies at several distinct points of B

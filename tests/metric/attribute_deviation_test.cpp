@@ -41,50 +41,57 @@ TEST(AttributeDeviation, EqualsThePerTieMinimumOfAttributeDistanceOverTheBruteFo
   SamplingOptions so;
   so.faces = FaceSampling::kMonteCarlo;
   so.target_count = 2000;
-  const SampleSet samples = sample_surface(a, so, 1.0);
-  // Several chunks of 1,024: the set is queried in coarse Morton order, then each chunk in its own.
-  ASSERT_GT(samples.samples.size(), 2048u);
+  // Several chunks of 1,024, queried chunk by chunk in their face order (spatially coherent), and
+  // the same samples shuffled, which are queried in the order of their coarse Morton cells.
+  SampleSet face_order = sample_surface(a, so, 1.0);
+  ASSERT_GT(face_order.samples.size(), 2048u);
+  SampleSet shuffled = face_order;
+  std::shuffle(shuffled.samples.begin(), shuffled.samples.end(), std::mt19937_64(3));
   const auto bvh = make_nearest_point_index(b, IndexKind::kBvh);
   const auto brute = make_nearest_point_index(b, IndexKind::kBruteForce);
   // With the default prefetch threshold (this reference is below it) and with the reference's
   // channels prefetched (0): the same results, the prefetching loop run under the sanitizers.
-  for (const std::size_t prefetch_bytes : {DeviationOptions{}.prefetch_bytes, std::size_t{0}}) {
-    SCOPED_TRACE("prefetch_bytes " + std::to_string(prefetch_bytes));
-    DeviationOptions options;
-    options.threads = 2;
-    options.prefetch_bytes = prefetch_bytes;
-    const SampleDeviations d =
-        compute_deviations(samples, plan.a, plan.b, *bvh, plan.measures, options);
+  for (const bool shuffle : {false, true})
+    for (const std::size_t prefetch_bytes : {DeviationOptions{}.prefetch_bytes, std::size_t{0}}) {
+      SCOPED_TRACE("prefetch_bytes " + std::to_string(prefetch_bytes) +
+                   (shuffle ? ", shuffled" : ""));
+      const SampleSet& samples = shuffle ? shuffled : face_order;
+      DeviationOptions options;
+      options.threads = 2;
+      options.prefetch_bytes = prefetch_bytes;
+      const SampleDeviations d =
+          compute_deviations(samples, plan.a, plan.b, *bvh, plan.measures, options);
+      EXPECT_EQ(d.cell_order, shuffle);
 
-    std::vector<SurfaceHit> ties;
-    std::size_t with_ties = 0, tie_changed_value = 0;
-    double fa[16], fb[16];
-    for (std::size_t i = 0; i < samples.samples.size(); ++i) {
-      const Sample& s = samples.samples[i];
-      const double distance = brute->find(s.point, sample_hint(a, s), ties);
-      ASSERT_EQ(d.values[0][i], distance) << "sample " << i;
-      ASSERT_EQ(d.tie_count[i], ties.size()) << "sample " << i;
-      ASSERT_EQ(d.nearest_feature[i], ties.front().feature) << "sample " << i;
-      with_ties += ties.size() > 1;
-      for (std::size_t m = 1; m < plan.measures.size(); ++m) {
-        const Measure& measure = plan.measures[m];
-        const AttributeChannel& ca = *plan.a.channel(measure.channel);
-        const AttributeChannel& cb = *plan.b.channel(measure.channel);
-        interpolate(ca, a, s.face, s.bary, s.vertex, fa);
-        double best = std::numeric_limits<double>::infinity(), first = 0;
-        for (std::size_t t = 0; t < ties.size(); ++t) {
-          interpolate(cb, b, ties[t].face, ties[t].bary, kNoFace, fb);
-          const double x = attribute_distance(measure.kind, fa, fb, ca.dim);
-          if (t == 0) first = x;
-          best = std::min(best, x);
+      std::vector<SurfaceHit> ties;
+      std::size_t with_ties = 0, tie_changed_value = 0;
+      double fa[16], fb[16];
+      for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+        const Sample& s = samples.samples[i];
+        const double distance = brute->find(s.point, sample_hint(a, s), ties);
+        ASSERT_EQ(d.values[0][i], distance) << "sample " << i;
+        ASSERT_EQ(d.tie_count[i], ties.size()) << "sample " << i;
+        ASSERT_EQ(d.nearest_feature[i], ties.front().feature) << "sample " << i;
+        with_ties += ties.size() > 1;
+        for (std::size_t m = 1; m < plan.measures.size(); ++m) {
+          const Measure& measure = plan.measures[m];
+          const AttributeChannel& ca = *plan.a.channel(measure.channel);
+          const AttributeChannel& cb = *plan.b.channel(measure.channel);
+          interpolate(ca, a, s.face, s.bary, s.vertex, fa);
+          double best = std::numeric_limits<double>::infinity(), first = 0;
+          for (std::size_t t = 0; t < ties.size(); ++t) {
+            interpolate(cb, b, ties[t].face, ties[t].bary, kNoFace, fb);
+            const double x = attribute_distance(measure.kind, fa, fb, ca.dim);
+            if (t == 0) first = x;
+            best = std::min(best, x);
+          }
+          tie_changed_value += best != first;
+          ASSERT_EQ(d.values[m][i], best) << measure.name << ", sample " << i;
         }
-        tie_changed_value += best != first;
-        ASSERT_EQ(d.values[m][i], best) << measure.name << ", sample " << i;
       }
+      EXPECT_GT(with_ties, 10u);          // the tie rule is exercised ...
+      EXPECT_GT(tie_changed_value, 10u);  // ... and changes values
     }
-    EXPECT_GT(with_ties, 10u);          // the tie rule is exercised ...
-    EXPECT_GT(tie_changed_value, 10u);  // ... and changes values
-  }
 }
 
 // Measures sharing a transform (unit normals, CIELAB) compute it once; the result is the same,
