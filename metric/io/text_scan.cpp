@@ -4,7 +4,6 @@
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
-#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -41,23 +40,21 @@ struct stat open_for_reading(const std::string& path, Descriptor& d) {
   return st;
 }
 
-// Everything left to read from d (straight into the string: one copy from the page cache).
+// Everything left to read from d (the files that are not mapped: pipes, procfs, a failed
+// mapping; and the .mtl files).
 std::string read_all(const std::string& path, const Descriptor& d, const struct stat& st) {
   std::string data;
-  if (S_ISREG(st.st_mode)) data.resize(static_cast<std::size_t>(st.st_size));
-  std::size_t have = 0;
+  if (S_ISREG(st.st_mode)) data.reserve(static_cast<std::size_t>(st.st_size));
+  char buffer[1 << 16];
   for (;;) {
-    if (data.size() - have < (1 << 16))
-      data.resize(std::max<std::size_t>(2 * data.size(), 1 << 16));
-    const ssize_t n = ::read(d.fd, data.data() + have, data.size() - have);
+    const ssize_t n = ::read(d.fd, buffer, sizeof buffer);
     if (n < 0) {
       if (errno == EINTR) continue;
       io_fail(path, "cannot read", errno);
     }
     if (n == 0) break;
-    have += static_cast<std::size_t>(n);
+    data.append(buffer, static_cast<std::size_t>(n));
   }
-  data.resize(have);
   return data;
 }
 
@@ -92,7 +89,7 @@ FileBytes::FileBytes(const std::string& path) {
 #endif
     void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, d.fd, 0);
     if (p != MAP_FAILED) {
-      ::madvise(p, size, MADV_SEQUENTIAL | MADV_WILLNEED);  // a hint: its failure costs nothing
+      (void)::madvise(p, size, MADV_WILLNEED);  // read ahead (a hint: its failure costs nothing)
       map_ = static_cast<const char*>(p);
       size_ = size;
       return;
