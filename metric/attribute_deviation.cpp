@@ -156,9 +156,10 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
   // chunk cut from the bucket order covers a few cells, which its own Morton order then walks.
   // Where the order is coherent (faces stored along the surface, as most meshes store them) the
   // bucket order only costs: the samples and their results are then read and written out of
-  // order (`meshdev compare` forward queries, 1M Monte Carlo samples: buildings 0.055 s without
-  // it against 0.076-0.079 s with it, torus100k -> 10k 0.061 against 0.075; torus1m with its
-  // faces shuffled 0.12 s with it against 0.47-0.51 without; docs/performance.md §3). Coherence
+  // order (`meshdev compare` forward queries, 1M Monte Carlo samples, the cell order for every
+  // dense set against only for incoherent ones: buildings 0.077-0.080 -> 0.059-0.063 s,
+  // torus100k -> 10k 0.073 -> 0.063 s; torus1m with its faces shuffled keeps it, 0.12 s, and
+  // took 0.47-0.51 s with it switched off; docs/performance.md §3). Coherence
   // is probed on pairs of consecutive samples: in a coherent order fewer than an eighth of them
   // lie in different cells of the 4 x 4 x 4 grid over the box (0-13 % on the test meshes), in a
   // shuffled one most do (64-85 %); a third is the threshold (a wrong guess costs speed only).
