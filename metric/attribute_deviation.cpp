@@ -99,6 +99,29 @@ struct TieRange {
 
 constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutive = coherent)
 
+// Where compute_deviations reads its samples from: a stored set, or Monte Carlo samples made a
+// chunk at a time. at(i): sample i; chunk(begin, count, scratch): samples begin .. begin +
+// count - 1 (a pointer into the set, or made in scratch).
+struct StoredSamples {
+  const SampleSet& set;
+  std::size_t size() const { return set.samples.size(); }
+  const Sample& at(std::size_t i) const { return set.samples[i]; }
+  const Sample* chunk(std::size_t begin, std::size_t, std::vector<Sample>&) const {
+    return set.samples.data() + begin;
+  }
+};
+
+struct GeneratedSamples {
+  const MonteCarloSamples& mc;
+  std::size_t size() const { return mc.size(); }
+  Sample at(std::size_t i) const { return mc.at(i); }
+  const Sample* chunk(std::size_t begin, std::size_t count, std::vector<Sample>& scratch) const {
+    scratch.resize(count);
+    mc.generate(begin, count, scratch.data());
+    return scratch.data();
+  }
+};
+
 }  // namespace
 
 QueryHint sample_hint(const TriMesh& reference, const Sample& s) {
@@ -110,12 +133,19 @@ QueryHint sample_hint(const TriMesh& reference, const Sample& s) {
   return hint;
 }
 
-SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
-                                    const PreparedMesh& target, const NearestPointIndex& index,
-                                    const std::vector<Measure>& measures,
-                                    const DeviationOptions& options) {
+namespace {
+
+// compute_deviations over `samples` (a SampleSet, or Monte Carlo samples made as they are
+// queried: `generated`). For generated samples whose order calls for the cell order below, the
+// samples are stored and the set is queried instead.
+template <class Samples>
+SampleDeviations deviations_of(const Samples& samples, const MonteCarloSamples* generated,
+                               const SampleSet* stored, const PreparedMesh& reference,
+                               const PreparedMesh& target, const NearestPointIndex& index,
+                               const std::vector<Measure>& measures,
+                               const DeviationOptions& options) {
   assert(!measures.empty() && measures[0].kind == MeasureKind::kGeometry);
-  const std::size_t n = samples.samples.size();
+  const std::size_t n = samples.size();
   SampleDeviations out;
   out.values.resize(measures.size());  // the per-sample arrays are made by the team, below
   const std::vector<ChannelGroup> groups = group_measures(reference, target, measures);
@@ -174,19 +204,40 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
     constexpr int kCoarseShift = 3 * (MortonGrid::kBucketLevels - 2);  // 4 x 4 x 4 cells
     std::size_t pairs = 0, apart = 0;
     for (std::size_t i = kProbe; i < n; i += kProbe, ++pairs)
-      apart += grid.bucket(samples.samples[i].point) >> kCoarseShift !=
-               grid.bucket(samples.samples[i - 1].point) >> kCoarseShift;
+      apart += grid.bucket(samples.at(i).point) >> kCoarseShift !=
+               grid.bucket(samples.at(i - 1).point) >> kCoarseShift;
     return 3 * apart > pairs;
   };
   constexpr std::size_t kDense = 8;
   if (n > kChunk && n >= kDense * tgt.faces.size() && probe_incoherent()) {
+    if (generated != nullptr) {  // made in chunks, the samples could not be visited in cells
+      SampleSet set;
+      set.samples.resize(n);
+      const auto count = static_cast<std::int64_t>(chunks);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+      for (std::int64_t c = 0; c < count; ++c) {
+        const std::size_t begin = static_cast<std::size_t>(c) * kChunk;
+        generated->generate(begin, std::min(kChunk, n - begin), set.samples.data() + begin);
+      }
+      return compute_deviations(set, reference, target, index, measures, options);
+    }
+    assert(stored != nullptr);
     std::vector<std::uint32_t> bucket(n);
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
-      bucket[i] = grid.bucket(samples.samples[i].point);
+      bucket[i] = grid.bucket(stored->samples[i].point);
     out.cell_order = stable_bucket_order(bucket.data(), n, visit);
   }
   auto sample_at = [&visit](std::size_t k) -> std::size_t { return visit.empty() ? k : visit[k]; };
+  // The samples queried k = begin .. begin + count - 1: in the set's own order (or made as they
+  // are queried), or gathered in the cell order.
+  auto chunk_of = [&](std::size_t begin, std::size_t count,
+                      std::vector<Sample>& scratch) -> const Sample* {
+    if (visit.empty()) return samples.chunk(begin, count, scratch);
+    scratch.resize(count);
+    for (std::size_t j = 0; j < count; ++j) scratch[j] = stored->samples[visit[begin + j]];
+    return scratch.data();
+  };
   // Whether the chunks prefetch the reference's per-vertex channel values (below).
   std::size_t reference_bytes = ref.faces.size() * sizeof(Triangle);
   for (const ChannelGroup& g : groups)
@@ -222,6 +273,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
     std::vector<std::uint64_t> keys;
     std::vector<double> best;
     std::vector<UvHit> uv_hits;
+    std::vector<Sample> scratch;          // the chunk's samples, where they are not read in place
     double fa[16], fb[16];                // channel values at p and at p'
     double form_a[3][16], form_b[3][16];  // ... normalised or in CIELAB
     const double *at_a[3], *at_b[3];      // each form's values
@@ -236,8 +288,8 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
       const std::size_t count = std::min(n, begin + kChunk) - begin;
       points.resize(count);
       hints.resize(count);
-      for (std::size_t j = 0; j < count; ++j)
-        points[j] = samples.samples[sample_at(begin + j)].point;
+      const Sample* const chunk_samples = chunk_of(begin, count, scratch);
+      for (std::size_t j = 0; j < count; ++j) points[j] = chunk_samples[j].point;
       morton_order(points.data(), count, sample_box, order, keys);
       // The samples' positions and hints in that order. The reference's per-vertex channel
       // values at each sample's corners are prefetched here, a batch's queries before they are
@@ -251,7 +303,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
       // below, their values are mostly in cache and the prefetches cost about 1 % (torus100k,
       // 2.8 MB; docs/performance.md §3).
       for (std::size_t j = 0; j < count; ++j) {
-        const Sample& s = samples.samples[sample_at(begin + order[j])];
+        const Sample& s = chunk_samples[order[j]];
         points[j] = s.point;
         hints[j] = sample_hint(ref, s);
         if (s.face == kNoFace || !prefetch_reference) continue;
@@ -266,7 +318,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
             from + index.find_batch(points.data() + from, hints.data() + from, count - from, batch);
         for (std::size_t j = from; j < to; ++j) {
           const std::size_t i = sample_at(begin + order[j]);
-          const Sample& s = samples.samples[i];
+          const Sample& s = chunk_samples[order[j]];
           const TieRange ties{batch.ties_begin(j - from), batch.tie_count(j - from)};
           assert(ties.size() > 0);
           if (options.keep_nearest) out.nearest[i] = ties.front();
@@ -356,6 +408,25 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
     out.cohen_max_uv_gap = std::max(out.cohen_max_uv_gap, uv_gap[i]);
   }
   return out;
+}
+
+}  // namespace
+
+SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
+                                    const PreparedMesh& target, const NearestPointIndex& index,
+                                    const std::vector<Measure>& measures,
+                                    const DeviationOptions& options) {
+  return deviations_of(StoredSamples{samples}, nullptr, &samples, reference, target, index,
+                       measures, options);
+}
+
+SampleDeviations compute_deviations(const MonteCarloSamples& samples, const PreparedMesh& reference,
+                                    const PreparedMesh& target, const NearestPointIndex& index,
+                                    const std::vector<Measure>& measures,
+                                    const DeviationOptions& options) {
+  assert(&samples.mesh() == reference.mesh);
+  return deviations_of(GeneratedSamples{samples}, &samples, nullptr, reference, target, index,
+                       measures, options);
 }
 
 }  // namespace meshdev

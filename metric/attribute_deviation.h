@@ -65,4 +65,14 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
                                     const std::vector<Measure>& measures,
                                     const DeviationOptions& options = {});
 
+// The same for Monte Carlo samples made a chunk at a time as they are queried, instead of read
+// from a stored set: the result, bit for bit, of compute_deviations on the SampleSet of those
+// samples (sample_surface with Monte Carlo face sampling alone), without its 72 bytes per
+// sample. Where the samples' order is not spatially coherent (see below) they are stored first
+// and queried as a set. `samples.mesh()` must be `reference`'s mesh. O(as above).
+SampleDeviations compute_deviations(const MonteCarloSamples& samples, const PreparedMesh& reference,
+                                    const PreparedMesh& target, const NearestPointIndex& index,
+                                    const std::vector<Measure>& measures,
+                                    const DeviationOptions& options = {});
+
 }  // namespace meshdev

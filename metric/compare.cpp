@@ -3,7 +3,9 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
+#include <optional>
 
 #include "metric/errors.h"
 
@@ -28,14 +30,28 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
                                        ? " (use --direction forward to sample it only)"
                                        : ""));
 
+  // Monte Carlo face samples alone, where no per-sample output is kept, are made a chunk at a
+  // time as they are queried instead of stored (72 bytes each): the same samples and results.
   auto t0 = Clock::now();
-  SampleSet samples = sample_surface(*from.mesh, sampling, diagonal);
-  if (samples.samples.empty())
+  std::optional<MonteCarloSamples> generated;
+  SampleSet samples;
+  double equal_weight = 0.0;
+  if (!o.keep_samples && monte_carlo_only(sampling)) {
+    generated.emplace(monte_carlo_samples(*from.mesh, sampling));
+    r.sampling = generated->description();
+    r.samples = generated->size();
+    equal_weight = generated->weight();
+  } else {
+    samples = sample_surface(*from.mesh, sampling, diagonal);
+    r.sampling = samples.description;
+    r.step = samples.step;
+    r.samples = samples.samples.size();
+    equal_weight = samples.equal_weight;
+  }
+  if (r.samples == 0)
     throw InvalidInput(from_label + " gave no samples (no referenced vertices and no faces)");
   r.seconds_sampling = seconds_since(t0);
-  r.sampling = samples.description;
-  r.step = samples.step;
-  r.samples = samples.samples.size();
+  auto sample = [&](std::size_t i) { return generated ? generated->at(i) : samples.samples[i]; };
 
   t0 = Clock::now();
   std::unique_ptr<NearestPointIndex> index =
@@ -47,13 +63,15 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   DeviationOptions deviation_options;
   deviation_options.threads = o.threads;
   deviation_options.keep_nearest = o.keep_samples;
-  SampleDeviations dev = compute_deviations(samples, from, to, *index, measures, deviation_options);
+  SampleDeviations dev =
+      generated ? compute_deviations(*generated, from, to, *index, measures, deviation_options)
+                : compute_deviations(samples, from, to, *index, measures, deviation_options);
   r.seconds_query = seconds_since(t0);
   // The nearest point of one sample: kept, or found again (the same query gives the same answer).
   std::vector<SurfaceHit> ties;
   auto nearest_of = [&](std::size_t i) {
     if (!dev.nearest.empty()) return dev.nearest[i];
-    const Sample& s = samples.samples[i];
+    const Sample s = sample(i);
     index->find(s.point, sample_hint(*from.mesh, s), ties);
     return ties.front();
   };
@@ -61,9 +79,10 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   // Each measure on the whole team (its numbers do not depend on the thread count); the weights
   // gathered from the samples only where they differ.
   const std::vector<ConstSpan<double>> values(dev.values.begin(), dev.values.end());
-  if (samples.equal_weight > 0.0) {
-    r.stats = compute_statistics_of_each(values, samples.equal_weight, o.histogram_bins, o.threads);
+  if (equal_weight > 0.0) {
+    r.stats = compute_statistics_of_each(values, equal_weight, o.histogram_bins, o.threads);
   } else {
+    assert(!generated);
     const auto n = static_cast<std::int64_t>(samples.samples.size());
     std::vector<double> weights(samples.samples.size());
 #pragma omp parallel for num_threads(o.threads > 0 ? o.threads : omp_get_max_threads()) \
@@ -73,7 +92,7 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   }
   for (std::size_t m = 0; m < measures.size(); ++m) {
     const std::size_t i = r.stats[m].argmax;
-    const Sample& s = samples.samples[i];
+    const Sample s = sample(i);
     const SurfaceHit h = nearest_of(i);
     r.max_location.push_back(
         {i, s.point, s.kind, s.face, h.point, h.face, h.feature, dev.values[m][i]});

@@ -15,6 +15,8 @@ namespace meshdev {
 namespace {
 
 constexpr std::size_t kMaxSamples = std::size_t{1} << 31;  // refuse steps that would exhaust memory
+// Monte Carlo samples made per task of sample_surface's parallel loop.
+constexpr std::size_t kGenerateRun = 4096;
 // Grid points within 1e-9 steps of an edge count as on it (0.9 / 0.1 is 8.999999999999998).
 constexpr double kGridSlack = 1e-9;
 
@@ -25,10 +27,19 @@ std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+// The hash of (seed, face) that a face's random numbers start from.
+std::uint64_t face_hash(std::uint64_t seed, std::uint64_t face) {
+  return splitmix64(splitmix64(seed) ^ face);
+}
+
+// Random number k of the face whose face_hash is h: a uniform double in [0, 1).
+double unit_random_of(std::uint64_t h, std::uint64_t k) {
+  return static_cast<double>(splitmix64(h ^ k) >> 11) * 0x1p-53;
+}
+
 // A uniform double in [0, 1) that depends only on (seed, face, k).
 double unit_random(std::uint64_t seed, std::uint64_t face, std::uint64_t k) {
-  const std::uint64_t h = splitmix64(splitmix64(splitmix64(seed) ^ face) ^ k);
-  return static_cast<double>(h >> 11) * 0x1p-53;
+  return unit_random_of(face_hash(seed, face), k);
 }
 
 // Calls fn(s, t) for every scan-conversion point of triangle (a,b,c): barycentric weights s on
@@ -214,30 +225,6 @@ void add_scan_samples(const TriMesh& m, double step, int threads, SampleSet& set
       });
 }
 
-void add_monte_carlo_samples(const TriMesh& m, std::size_t target, std::uint64_t seed, int threads,
-                             SampleSet& set) {
-  const double total = surface_area(m);
-  if (!(total > 0.0)) return;
-  const double weight = total / static_cast<double>(target);
-  add_face_samples(
-      m, threads, set,
-      [&](std::uint32_t f) {
-        const double expected = static_cast<double>(target) * face_area(m, f) / total;
-        return static_cast<std::size_t>(std::floor(expected + unit_random(seed, f, ~0ull)));
-      },
-      [&](std::uint32_t f, Sample* out, std::size_t n) {
-        const Triangle& tri = m.faces[f];
-        const Vec3 &a = m.positions[tri[0]], &b = m.positions[tri[1]], &c = m.positions[tri[2]];
-        for (std::size_t k = 0; k < n; ++k) {
-          const double r = std::sqrt(unit_random(seed, f, 2 * k));
-          const double r2 = unit_random(seed, f, 2 * k + 1);
-          const std::array<double, 3> bary{1.0 - r, r * (1.0 - r2), r * r2};
-          ::new (static_cast<void*>(out + k)) Sample{
-              bary[0] * a + bary[1] * b + bary[2] * c, f, kNoFace, bary, weight, SampleKind::kFace};
-        }
-      });
-}
-
 }  // namespace
 
 const char* sample_kind_name(SampleKind k) {
@@ -267,7 +254,10 @@ std::size_t scan_conversion_count(const Vec3& a, const Vec3& b, const Vec3& c, d
   return count;
 }
 
-SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double diagonal) {
+namespace {
+
+// The errors sample_surface raises for `o` on `mesh` before it samples anything.
+void check_options(const TriMesh& mesh, const SamplingOptions& o) {
   const bool wants_faces = o.faces != FaceSampling::kNone;
   if ((wants_faces || o.edges) && mesh.faces.empty())
     throw InvalidInput(
@@ -276,10 +266,31 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   if (o.step < 0.0 || o.step_fraction < 0.0 || !std::isfinite(o.step) ||
       !std::isfinite(o.step_fraction))
     throw InvalidInput("the sampling step must be a positive finite number");
+}
+
+std::size_t face_target(const TriMesh& mesh, const SamplingOptions& o) {
+  return o.target_count > 0 ? o.target_count : 10 * mesh.faces.size();
+}
+
+}  // namespace
+
+bool monte_carlo_only(const SamplingOptions& o) {
+  return o.faces == FaceSampling::kMonteCarlo && !o.vertices && !o.edges;
+}
+
+MonteCarloSamples monte_carlo_samples(const TriMesh& mesh, const SamplingOptions& o) {
+  assert(monte_carlo_only(o));
+  check_options(mesh, o);
+  return MonteCarloSamples(mesh, face_target(mesh, o), o.seed,
+                           o.threads > 0 ? o.threads : omp_get_max_threads());
+}
+
+SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double diagonal) {
+  check_options(mesh, o);
 
   SampleSet set;
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
-  const std::size_t target = o.target_count > 0 ? o.target_count : 10 * mesh.faces.size();
+  const std::size_t target = face_target(mesh, o);
   double step = o.step > 0.0 ? o.step : o.step_fraction * diagonal;
   const bool needs_step = o.faces == FaceSampling::kScanConversion || o.edges;
   if (needs_step && !(step > 0.0)) {
@@ -311,8 +322,19 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   if (o.vertices) add_vertex_samples(mesh, set);
   if (o.edges) add_edge_samples(mesh, step, set);
   if (o.faces == FaceSampling::kScanConversion) add_scan_samples(mesh, step, threads, set);
-  if (o.faces == FaceSampling::kMonteCarlo)
-    add_monte_carlo_samples(mesh, target, o.seed, threads, set);
+  if (o.faces == FaceSampling::kMonteCarlo) {
+    const MonteCarloSamples mc(mesh, target, o.seed, threads);
+    const std::size_t offset = set.samples.size();
+    set.samples.resize(offset + mc.size());  // raw storage: each sample placed by its thread
+    const auto runs = static_cast<std::int64_t>((mc.size() + kGenerateRun - 1) / kGenerateRun);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::int64_t r = 0; r < runs; ++r) {
+      const std::size_t begin = static_cast<std::size_t>(r) * kGenerateRun;
+      mc.generate(begin, std::min(kGenerateRun, mc.size() - begin),
+                  set.samples.data() + offset + begin);
+    }
+    set.face_count += mc.size();
+  }
 
   // Weights: face samples carry area; with face samples present, vertex and edge samples only
   // hunt the maximum (weight 0); edge samples carry length when they are the finest kind.
@@ -347,6 +369,63 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
     d << sep << with_commas(set.face_count) << " face points (Monte Carlo, seed " << o.seed << ")";
   set.description = d.str();
   return set;
+}
+
+MonteCarloSamples::MonteCarloSamples(const TriMesh& mesh, std::size_t target, std::uint64_t seed,
+                                     int threads)
+    : mesh_(&mesh), seed_(seed), first_(mesh.faces.size() + 1, 0) {
+  const double total = surface_area(mesh);
+  if (!(total > 0.0) || target == 0) return;
+  weight_ = total / static_cast<double>(target);
+  const auto faces = static_cast<std::int64_t>(mesh.faces.size());
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t f = 0; f < faces; ++f) {
+    const double expected = static_cast<double>(target) * face_area(mesh, f) / total;
+    first_[f + 1] = static_cast<std::size_t>(
+        std::floor(expected + unit_random(seed, static_cast<std::uint64_t>(f), ~0ull)));
+  }
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) first_[f + 1] += first_[f];
+}
+
+void MonteCarloSamples::generate(std::size_t begin, std::size_t count, Sample* out) const {
+  assert(begin + count <= size());
+  // The face holding sample `begin`: the last f with first_[f] <= begin (faces with no samples
+  // share their successor's offset, so this one has a sample).
+  auto face = static_cast<std::uint32_t>(std::upper_bound(first_.begin(), first_.end(), begin) -
+                                         first_.begin() - 1);
+  std::size_t k = begin - first_[face];
+  for (std::size_t j = 0; j < count;) {
+    while (first_[face] + k == first_[face + 1]) {  // past this face's samples
+      ++face;
+      k = 0;
+    }
+    // The face's samples k .. of this range: its corners and hash read once.
+    const Triangle& tri = mesh_->faces[face];
+    const Vec3 &a = mesh_->positions[tri[0]], &b = mesh_->positions[tri[1]],
+               &c = mesh_->positions[tri[2]];
+    const std::uint64_t h = face_hash(seed_, face);
+    for (const std::size_t end = std::min(first_[face + 1] - first_[face], k + count - j); k < end;
+         ++k, ++j) {
+      const double r = std::sqrt(unit_random_of(h, 2 * k));
+      const double r2 = unit_random_of(h, 2 * k + 1);
+      const std::array<double, 3> bary{1.0 - r, r * (1.0 - r2), r * r2};
+      ::new (static_cast<void*>(out + j)) Sample{
+          bary[0] * a + bary[1] * b + bary[2] * c, face, kNoFace, bary, weight_, SampleKind::kFace};
+    }
+  }
+}
+
+Sample MonteCarloSamples::at(std::size_t i) const {
+  Sample s;
+  generate(i, 1, &s);
+  return s;
+}
+
+std::string MonteCarloSamples::description() const {
+  std::ostringstream d;
+  d << with_commas(size()) << " face points (Monte Carlo, seed " << seed_ << ")";
+  return d.str();
 }
 
 void set_sample_kinds(SamplingOptions& o, const std::string& list) {

@@ -74,11 +74,53 @@ struct SampleSet {
   std::string description;  // human-readable summary of what was sampled
 };
 
+// The Monte Carlo face samples of a mesh (FaceSampling::kMonteCarlo: face f gets
+// floor(N·area_f/area + u_f) area-uniform points) as a sequence that makes any range of them on
+// demand: exactly the samples, in the same order, that sample_surface gives for Monte Carlo face
+// sampling alone, which makes them through this class. compare_meshes streams them through
+// compute_deviations a chunk at a time instead of storing the set (72 bytes per sample, which a
+// 1M-sample direction first had to fault in: docs/performance.md §3, thirteenth session).
+// `mesh` must outlive it. Holds one offset per face (8 bytes); the samples weigh weight() each.
+class MonteCarloSamples {
+ public:
+  // Counts every face's samples for `target` samples in all and `seed` (the counts on `threads`;
+  // the same for any count). A mesh of zero area has none. O(F).
+  MonteCarloSamples(const TriMesh& mesh, std::size_t target, std::uint64_t seed, int threads);
+
+  std::size_t size() const { return first_.back(); }  // N ± a few (rounding per face)
+  double weight() const { return weight_; }           // of every sample: area / target
+  std::uint64_t seed() const { return seed_; }
+  const TriMesh& mesh() const { return *mesh_; }
+
+  // Samples [begin, begin + count) into out[0, count). Precondition: begin + count <= size().
+  // O(count + log F).
+  void generate(std::size_t begin, std::size_t count, Sample* out) const;
+  // Sample i. O(log F).
+  Sample at(std::size_t i) const;
+  // "N face points (Monte Carlo, seed S)", as SampleSet::description says it.
+  std::string description() const;
+
+ private:
+  const TriMesh* mesh_;
+  std::uint64_t seed_;
+  double weight_ = 0;
+  std::vector<std::size_t> first_;  // first_[f]: the first sample of face f; first_[F] = size()
+};
+
 // Samples `mesh` as `options` says. `diagonal` scales step_fraction (pass the reference mesh's
 // bbox diagonal so both directions of a comparison use the same absolute Δ). Throws InvalidInput
 // for a non-positive step, or face/edge sampling on a mesh without faces.
 // O(F + V + number of samples) time and memory; the Δ search for a target count is O(F log).
 SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& options, double diagonal);
+
+// Whether `options` asks for Monte Carlo face samples alone (no vertices, no edges): the set that
+// MonteCarloSamples can make on demand. O(1).
+bool monte_carlo_only(const SamplingOptions& options);
+
+// The samples sample_surface(mesh, options, ·) gives, made on demand (precondition:
+// monte_carlo_only(options); target_count 0 = 10 x faces, as there). Throws InvalidInput as
+// sample_surface does. O(F).
+MonteCarloSamples monte_carlo_samples(const TriMesh& mesh, const SamplingOptions& options);
 
 // Sets vertices/edges/faces of `options` from a comma-separated list of "vertices", "edges",
 // "faces" (scan conversion) and "montecarlo" (the CLI's and the sweep config's syntax). Throws

@@ -203,6 +203,40 @@ TEST(Compare, OneThreadEqualsTwoThreads) {
   }
 }
 
+// Monte Carlo samples alone are made as they are queried where no per-sample output is kept,
+// and stored where it is (keep_samples): the same statistics and maximum locations either way.
+TEST(Compare, MonteCarloSamplesMadeAsQueriedEqualStoredOnes) {
+  TriMesh a = test::icosphere(3), b = test::translated(test::icosphere(2), {0.01, 0, 0});
+  CompareOptions o;
+  o.sampling.vertices = false;
+  o.sampling.faces = FaceSampling::kMonteCarlo;
+  o.sampling.target_count = 30000;
+  o.threads = 2;
+  const ComparisonResult made = compare_meshes(a, b, o);
+  o.keep_samples = true;
+  const ComparisonResult stored = compare_meshes(a, b, o);
+  ASSERT_FALSE(stored.forward->sample_set.samples.empty());
+  for (const auto& [x, y] : {std::pair{&*made.forward, &*stored.forward},
+                             std::pair{&*made.backward, &*stored.backward}}) {
+    EXPECT_EQ(x->samples, y->samples);
+    EXPECT_EQ(x->sampling, y->sampling);
+    EXPECT_EQ(x->nearest_feature, y->nearest_feature);
+    EXPECT_EQ(x->samples_with_ties, y->samples_with_ties);
+    for (std::size_t m = 0; m < made.measures.size(); ++m) {
+      const Statistics &s = x->stats[m], &t = y->stats[m];
+      const double got1[] = {s.min, s.mean, s.variance, s.rms, s.p50, s.p95, s.p99, s.max};
+      const double got2[] = {t.min, t.mean, t.variance, t.rms, t.p50, t.p95, t.p99, t.max};
+      for (int k = 0; k < 8; ++k) EXPECT_EQ(got1[k], got2[k]) << made.measures[m].name << " " << k;
+      EXPECT_EQ(s.argmax, t.argmax);
+      EXPECT_EQ(s.histogram.counts, t.histogram.counts);
+      EXPECT_EQ(x->max_location[m].sample, y->max_location[m].sample);
+      EXPECT_EQ(x->max_location[m].point, y->max_location[m].point);
+      EXPECT_EQ(x->max_location[m].nearest, y->max_location[m].nearest);
+      EXPECT_EQ(x->max_location[m].nearest_face, y->max_location[m].nearest_face);
+    }
+  }
+}
+
 TEST(Compare, PointCloudReferenceWorksForwardOnly) {
   TriMesh cloud;
   cloud.positions = {{0.2, 0.2, 1.0}, {0.5, 0.1, -2.0}};

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "metric/errors.h"
 #include "tests/support/shapes.h"
@@ -107,6 +110,63 @@ TEST(Sampling, MonteCarloDependsOnlyOnTheSeed) {
   o.seed = 8;
   SampleSet z = sample_surface(m, o, 2.0);
   EXPECT_NE(z.samples[0].point, x.samples[0].point);
+}
+
+// MonteCarloSamples makes, for any range, exactly the samples sample_surface stores for Monte
+// Carlo faces alone (which it makes through that class): a soup with degenerate (zero-area)
+// faces that get no samples, ranges that start and end inside faces and cross empty ones.
+TEST(Sampling, MonteCarloSamplesMakeTheStoredSetInAnyRange) {
+  const TriMesh m = test::random_soup(400, 5, 0.2);
+  SamplingOptions o;
+  o.vertices = false;
+  o.faces = FaceSampling::kMonteCarlo;
+  o.target_count = 6000;
+  o.seed = 3;
+  o.threads = 2;
+  ASSERT_TRUE(monte_carlo_only(o));
+  const SampleSet set = sample_surface(m, o, 1.0);
+  const MonteCarloSamples mc = monte_carlo_samples(m, o);
+  ASSERT_EQ(mc.size(), set.samples.size());
+  EXPECT_EQ(mc.weight(), set.equal_weight);
+  EXPECT_EQ(mc.description(), set.description);
+  auto expect_same = [](const Sample& x, const Sample& y, std::size_t i) {
+    ASSERT_EQ(x.point, y.point) << "sample " << i;
+    ASSERT_EQ(x.face, y.face) << "sample " << i;
+    ASSERT_EQ(x.vertex, y.vertex) << "sample " << i;
+    ASSERT_EQ(x.bary, y.bary) << "sample " << i;
+    ASSERT_EQ(x.weight, y.weight) << "sample " << i;
+    ASSERT_EQ(x.kind, y.kind) << "sample " << i;
+  };
+  for (std::size_t i = 0; i < set.samples.size(); ++i) expect_same(mc.at(i), set.samples[i], i);
+  std::mt19937_64 rng(9);
+  std::vector<Sample> out;
+  for (int trial = 0; trial < 200; ++trial) {
+    const std::size_t begin = rng() % mc.size();
+    const std::size_t count = rng() % std::min<std::size_t>(mc.size() - begin, 300);
+    out.assign(count + 1, Sample{});
+    mc.generate(begin, count, out.data());
+    for (std::size_t j = 0; j < count; ++j) expect_same(out[j], set.samples[begin + j], begin + j);
+    ASSERT_EQ(out[count].face, kNoFace);  // nothing written past the range
+  }
+  // Options with vertices or edges are not Monte Carlo alone.
+  o.vertices = true;
+  EXPECT_FALSE(monte_carlo_only(o));
+  o.vertices = false;
+  o.edges = true;
+  EXPECT_FALSE(monte_carlo_only(o));
+}
+
+// A mesh of zero area has no Monte Carlo samples, stored or made.
+TEST(Sampling, MonteCarloSamplesOfAZeroAreaMeshAreNone) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+  m.faces = {{0, 1, 2}};
+  SamplingOptions o;
+  o.vertices = false;
+  o.faces = FaceSampling::kMonteCarlo;
+  o.target_count = 100;
+  EXPECT_EQ(monte_carlo_samples(m, o).size(), 0u);
+  EXPECT_TRUE(sample_surface(m, o, 1.0).samples.empty());
 }
 
 // The set's equal_weight is every sample's weight where the sampling gives them one weight
