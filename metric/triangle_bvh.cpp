@@ -11,8 +11,10 @@
 #include <memory>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "metric/float_rounding.h"
+#include "metric/morton_order.h"
 #include "metric/plane_bounds.h"
 #include "metric/simd4.h"
 
@@ -26,6 +28,12 @@ constexpr std::uint32_t kLeafSize = 4;
 constexpr std::uint32_t kAlignBelow = 32;       // subtrees this small split at multiples of 4
 constexpr std::uint32_t kTaskBelow = 1u << 15;  // smaller subtrees are built by one thread
 constexpr std::uint32_t kMinRun = 4;  // mean run of faces in one bin for the binning by runs
+// Meshes of at least kMortonFrom faces stored in no spatial order are split along a Morton curve
+// above kAlignBelow faces instead of by binned SAH (see sort_along_morton_curve).
+constexpr std::uint32_t kMortonFrom = 4096;
+constexpr int kMortonBits = 10;                  // per axis: 30-bit codes
+constexpr int kOrderGrid = 16;                   // cells per axis of the order probe
+constexpr std::uint32_t kOrderProbeStride = 64;  // the probe's pairs: faces 64i and 64i + 1
 // Below this depth the binary build splits by SAH; deeper (only for pathological inputs) it splits
 // the list in halves, so the depth stays below kMaxSahDepth + 33 and leaves keep <= 4 faces.
 constexpr int kMaxSahDepth = 60;
@@ -156,6 +164,104 @@ std::uint32_t sortable_bits(float f) {
   std::uint32_t bits;
   std::memcpy(&bits, &f, sizeof bits);
   return (bits & 0x80000000u) != 0 ? ~bits : bits | 0x80000000u;
+}
+
+// Where a mesh stores its faces in no spatial order, binned SAH is slow: consecutive faces fall
+// in different bins, so the binning by runs does not apply and each face's bin is a load and a
+// store of its box (buildings.ply, 400k faces: 18 face visits per face of the binning, 3.6 of
+// them in runs; torus1m, stored in grid order: 15.5 and 12.8; the splits took 44-46 ms against
+// 72-74 ms for 2.5 times the faces). Such meshes are sorted along a Morton curve instead, and
+// every range of more than kAlignBelow faces is split where the highest bit in which its codes
+// differ changes (Lauterbach et al., "Fast BVH construction on GPUs", 2009: the LBVH), its box
+// the union of its children's; smaller ranges keep the exact SAH over full blocks of 4 below.
+// No pass over a range is needed to split it, so the splits took 14-15 ms on buildings.ply,
+// the sort 11 ms (codes and three 10-bit radix passes on the team, then the records moved);
+// queries in such trees were within 3 % of the SAH tree's (docs/performance.md §3, thirteenth
+// session). Coherent orders keep binned SAH, which then costs about what the sort and the
+// Morton splits cost together and gives trees 2-3 % faster to query (torus100k -> torus1m).
+
+// True where more than a quarter of the probed pairs of consecutive faces have centres in
+// different cells of a 16^3 grid over the centres' box: 0.04 for torus1m (a grid's rows), 0.13
+// torus100k, 0.49 buildings.ply, 0.68 bunny00, 0.93 armadillo, 1.0 torus1m with its faces
+// shuffled. O(n / 64).
+bool out_of_spatial_order(const Prim* prims, std::uint32_t n, const Box& centres) {
+  auto cell = [&centres](const Prim& prim, int k) {
+    const double extent = double(centres.hi[k]) - centres.lo[k];
+    const double t = extent > 0.0 ? (prim.key(k) - centres.lo[k]) / extent * kOrderGrid : 0.0;
+    return t >= kOrderGrid - 1 ? kOrderGrid - 1 : t > 0.0 ? static_cast<int>(t) : 0;  // NaN: 0
+  };
+  std::uint32_t pairs = 0, apart = 0;
+  for (std::uint32_t i = 0; i + 1 < n; i += kOrderProbeStride, ++pairs)
+    for (int k = 0; k < 3; ++k)
+      if (cell(prims[i], k) != cell(prims[i + 1], k)) {
+        ++apart;
+        break;
+      }
+  return 4 * apart > pairs;
+}
+
+// Sorts prims[0, n) along a Morton curve of 2^10 cells per axis on a cubic grid over `centres`
+// (the box of the records' centres), and gives each position's 30-bit code in codes[0, n). A
+// stable LSD radix sort of (code, position) keys: three passes of 10 bits, each thread counting
+// and scattering its own range (offsets bucket-major, thread-minor, so equal digits keep their
+// order and the result is the same for any team). O(n).
+void sort_along_morton_curve(std::unique_ptr<Prim[]>& prims, std::uint32_t n, const Box& centres,
+                             int team, std::vector<std::uint32_t>& codes) {
+  constexpr std::uint32_t kRadix = 1u << kMortonBits;
+  constexpr float kMaxCell = static_cast<float>(kRadix - 1);
+  float extent = 0.0f;
+  for (int k = 0; k < 3; ++k) extent = std::max(extent, centres.hi[k] - centres.lo[k]);
+  const float scale = extent > 0.0f && extent < kInf ? 0.999f * kRadix / extent : 0.0f;
+  std::unique_ptr<std::uint64_t[]> keys(new std::uint64_t[n]), other(new std::uint64_t[n]);
+  std::vector<std::uint32_t> offsets(static_cast<std::size_t>(team) * kRadix);
+  const auto& spread = detail::kMortonSpread.bits;  // 7 bits to every third (metric/morton_order.h)
+#pragma omp parallel num_threads(team)
+  {
+    const auto me = static_cast<std::uint32_t>(omp_get_thread_num());
+    const auto size = static_cast<std::uint32_t>(omp_get_num_threads());
+    const auto begin = static_cast<std::uint32_t>(std::uint64_t{n} * me / size);
+    const auto end = static_cast<std::uint32_t>(std::uint64_t{n} * (me + 1) / size);
+    for (std::uint32_t i = begin; i < end; ++i) {
+      std::uint64_t code = 0;
+      for (int k = 0; k < 3; ++k) {
+        const float t = (prims[i].key(k) - centres.lo[k]) * scale;
+        const auto c = static_cast<std::uint32_t>(t > 0.0f ? (t < kMaxCell ? t : kMaxCell) : 0.0f);
+        code |= (spread[c & 127u] | spread[c >> 7] << 21) << k;
+      }
+      keys[i] = code << 32 | i;
+    }
+    std::uint64_t* from = keys.get();
+    std::uint64_t* to = other.get();
+    std::uint32_t* mine = offsets.data() + std::size_t{me} * kRadix;
+    for (int pass = 0; pass < 3; ++pass) {
+      const int shift = 32 + kMortonBits * pass;
+      std::fill(mine, mine + kRadix, 0u);
+      for (std::uint32_t i = begin; i < end; ++i) ++mine[(from[i] >> shift) & (kRadix - 1)];
+#pragma omp barrier
+#pragma omp single
+      {
+        std::uint32_t sum = 0;
+        for (std::uint32_t d = 0; d < kRadix; ++d)
+          for (std::uint32_t t = 0; t < size; ++t)
+            sum += std::exchange(offsets[std::size_t{t} * kRadix + d], sum);
+      }  // (the single's barrier: every thread's offsets are ready)
+      for (std::uint32_t i = begin; i < end; ++i)
+        to[mine[(from[i] >> shift) & (kRadix - 1)]++] = from[i];
+#pragma omp barrier
+      std::swap(from, to);
+    }
+  }
+  keys.swap(other);  // three passes: the sorted keys are in `other`
+  other.reset();
+  std::unique_ptr<Prim[]> sorted(new Prim[n]);
+  codes.resize(n);
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    sorted[i] = prims[static_cast<std::uint32_t>(keys[i])];
+    codes[i] = static_cast<std::uint32_t>(keys[i] >> 32);
+  }
+  prims.swap(sorted);
 }
 
 // The conditioning kappa = |ab||ac| / |ab x ac| of a triangle with edges ab, ac (float frame), or
@@ -318,6 +424,10 @@ void TriangleBvh::build(int threads) {
     root_bounds.extend(part_bounds[static_cast<std::size_t>(t)]);
     root_centres.extend(part_centres[static_cast<std::size_t>(t)]);
   }
+  std::vector<std::uint32_t> codes;  // with morton_splits_: each position's Morton code
+  morton_splits_ = n >= kMortonFrom && out_of_spatial_order(prims.get(), n, root_centres.box());
+  if (morton_splits_) sort_along_morton_curve(prims, n, root_centres.box(), team, codes);
+  const bool morton = morton_splits_;
   // The binary tree has at most 2n - 1 nodes; children are allocated in pairs, so subtrees can
   // be built in parallel (OpenMP tasks above kTaskBelow faces): above kTaskBelow faces from a
   // shared counter; a subtree of c <= kTaskBelow faces, which one thread builds, takes 2c ids
@@ -337,13 +447,16 @@ void TriangleBvh::build(int threads) {
                    std::uint32_t* pool) -> void {
     assert(depth <= kMaxBinaryDepth);
     Prim* const first = prims.get();
-    if (!known)
+    // A Morton split needs no pass over the range: the node's box is its children's, set after
+    // them.
+    const bool by_code = morton && end - begin > kAlignBelow && depth < kMaxSahDepth;
+    if (!known && !by_code)
       for (std::uint32_t i = begin; i < end; ++i) {
         bounds.extend(F4::load(first[i].lo), F4::load(first[i].hi));
         const F4 c = first[i].centre2();
         centre_bounds.extend(c, c);
       }
-    tree[node].set_box(bounds.box());
+    if (!by_code) tree[node].set_box(bounds.box());
     const std::uint32_t count = end - begin;
     if (count <= kLeafSize) {
       tree[node].index = begin;
@@ -365,7 +478,18 @@ void TriangleBvh::build(int threads) {
     bool children_known = false;
     bool children_long_runs = long_runs;
     Bounds child_bounds[2], child_centres[2];
-    if (count <= kAlignBelow && axis_extent > 0.0 && depth < kMaxSahDepth) {
+    if (by_code) {
+      // Where the highest bit in which the range's codes differ turns from 0 to 1 (the codes are
+      // sorted, so it lies strictly inside); equal codes: the halves above.
+      const std::uint32_t c0 = codes[begin], c1 = codes[end - 1];
+      if (c0 != c1) {
+        const int bit = 31 - __builtin_clz(c0 ^ c1);
+        mid = static_cast<std::uint32_t>(
+            std::partition_point(codes.begin() + begin, codes.begin() + end,
+                                 [bit](std::uint32_t c) { return (c >> bit & 1u) == 0; }) -
+            codes.begin());
+      }
+    } else if (count <= kAlignBelow && axis_extent > 0.0 && depth < kMaxSahDepth) {
       // Small subtrees: sorted along the axis, and split where SAH is least among the splits
       // whose left side is a multiple of 4 faces (costed exactly, from prefix and suffix boxes).
       // Leaves are then full blocks of 4 except about one per subtree of kAlignBelow faces,
@@ -544,6 +668,13 @@ void TriangleBvh::build(int threads) {
       if (pool == &own) {
         assert(own - own_first <= 2 * count);
         used_nodes.fetch_add(own - own_first);
+      }
+    }
+    if (by_code) {
+      const BinaryNode &l = tree[left_child], &r = tree[left_child + 1];
+      for (int k = 0; k < 3; ++k) {
+        tree[node].lo[k] = std::min(l.lo[k], r.lo[k]);
+        tree[node].hi[k] = std::max(l.hi[k], r.hi[k]);
       }
     }
   };

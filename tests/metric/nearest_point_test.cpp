@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "metric/errors.h"
 #include "metric/morton_order.h"
@@ -723,6 +724,43 @@ TEST(NearestPoint, TargetWithoutFacesIsRejected) {
   TriMesh cloud;
   cloud.positions = {{0, 0, 0}};
   EXPECT_THROW(make_nearest_point_index(cloud, IndexKind::kBvh), InvalidInput);
+}
+
+// Meshes of 4,096 faces or more stored in no spatial order are split along a Morton curve, those
+// stored along their surface by binned SAH: both trees hold their faces, stay below 64 bytes per
+// face, do not depend on the build's thread count, and answer single and batched queries as the
+// brute-force oracle does.
+TEST(NearestPoint, BvhSplitsAlongAMortonCurveWhereFacesAreStoredOutOfOrder) {
+  const TriMesh rows = test::grid(60);           // 7,200 faces in row order
+  TriMesh shuffled_sphere = test::icosphere(5);  // 20,480 faces
+  std::shuffle(shuffled_sphere.faces.begin(), shuffled_sphere.faces.end(), std::mt19937_64(2));
+  const TriMesh& shuffled = shuffled_sphere;
+  const TriMesh small = test::random_soup(1000, 3);  // below 4,096 faces: SAH in any order
+  for (const auto& [m, morton] :
+       {std::pair{&rows, false}, std::pair{&shuffled, true}, std::pair{&small, false}}) {
+    SCOPED_TRACE(std::to_string(m->faces.size()) + " faces, Morton " + std::to_string(morton));
+    const TriangleBvh one(*m, {}, 1), two(*m, {}, 2);
+    EXPECT_EQ(one.morton_splits(), morton);
+    EXPECT_EQ(two.morton_splits(), morton);
+    EXPECT_EQ(one.check_structure(), "");
+    EXPECT_EQ(one.node_count(), two.node_count());
+    EXPECT_EQ(one.leaf_count(), two.leaf_count());
+    EXPECT_EQ(one.memory_bytes(), two.memory_bytes());
+    EXPECT_LE(static_cast<double>(one.memory_bytes()) / static_cast<double>(m->faces.size()), 64.0);
+    const NearestPointBrute brute(*m);
+    std::vector<SurfaceHit> tb, t2, tf;
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(-1.2, 1.2);
+    for (int q = 0; q < 300; ++q) {
+      const Vec3 p{u(rng), u(rng), u(rng)};
+      const double d = brute.find(p, {}, tf);
+      ASSERT_EQ(one.find(p, {}, tb), d) << "query " << q;
+      expect_same(tb, tf);
+      ASSERT_EQ(two.find(p, {}, t2), d) << "query " << q;
+      expect_same(t2, tf);
+    }
+    expect_batch_is_the_oracle(*m, coherent_queries(*m, 11, 40, 1e-3, false), "coherent");
+  }
 }
 
 }  // namespace
