@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <type_traits>
 
 #include "metric/morton_order.h"
 #include "metric/texture_deviation.h"
@@ -100,15 +101,19 @@ struct TieRange {
 constexpr std::size_t kChunk = 1024;  // samples per scheduling unit (consecutive = coherent)
 
 // Where compute_deviations reads its samples from: a stored set, or Monte Carlo samples made a
-// chunk at a time. at(i): sample i; chunk(begin, count, scratch): samples begin .. begin +
-// count - 1 (a pointer into the set, or made in scratch).
+// chunk at a time. at(i): sample i; GeneratedSamples::chunk(begin, count, scratch): samples
+// begin .. begin + count - 1, made in scratch.
 struct StoredSamples {
   const SampleSet& set;
   std::size_t size() const { return set.samples.size(); }
   const Sample& at(std::size_t i) const { return set.samples[i]; }
-  const Sample* chunk(std::size_t begin, std::size_t, std::vector<Sample>&) const {
-    return set.samples.data() + begin;
-  }
+};
+
+// A chunk's samples, j = 0 .. count - 1: base[j], or base[visit[j]] in the cell order.
+struct ChunkSamples {
+  const Sample* base;
+  const std::uint32_t* visit;
+  const Sample& operator[](std::size_t j) const { return visit ? base[visit[j]] : base[j]; }
 };
 
 struct GeneratedSamples {
@@ -135,15 +140,14 @@ QueryHint sample_hint(const TriMesh& reference, const Sample& s) {
 
 namespace {
 
-// compute_deviations over `samples` (a SampleSet, or Monte Carlo samples made as they are
-// queried: `generated`). For generated samples whose order calls for the cell order below, the
-// samples are stored and the set is queried instead.
+// compute_deviations over `samples` (StoredSamples or GeneratedSamples). Generated samples whose
+// order calls for the cell order below are stored first and the set is queried instead.
 template <class Samples>
-SampleDeviations deviations_of(const Samples& samples, const MonteCarloSamples* generated,
-                               const SampleSet* stored, const PreparedMesh& reference,
+SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& reference,
                                const PreparedMesh& target, const NearestPointIndex& index,
                                const std::vector<Measure>& measures,
                                const DeviationOptions& options) {
+  constexpr bool kGenerated = std::is_same_v<Samples, GeneratedSamples>;
   assert(!measures.empty() && measures[0].kind == MeasureKind::kGeometry);
   const std::size_t n = samples.size();
   SampleDeviations out;
@@ -210,33 +214,30 @@ SampleDeviations deviations_of(const Samples& samples, const MonteCarloSamples* 
   };
   constexpr std::size_t kDense = 8;
   if (n > kChunk && n >= kDense * tgt.faces.size() && probe_incoherent()) {
-    if (generated != nullptr) {  // made in chunks, the samples could not be visited in cells
+    if constexpr (kGenerated) {  // made in chunks, the samples could not be visited in cells
       SampleSet set;
       set.samples.resize(n);
-      const auto count = static_cast<std::int64_t>(chunks);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-      for (std::int64_t c = 0; c < count; ++c) {
-        const std::size_t begin = static_cast<std::size_t>(c) * kChunk;
-        generated->generate(begin, std::min(kChunk, n - begin), set.samples.data() + begin);
-      }
+      samples.mc.generate_all(set.samples.data(), threads);
       return compute_deviations(set, reference, target, index, measures, options);
-    }
-    assert(stored != nullptr);
-    std::vector<std::uint32_t> bucket(n);
+    } else {
+      std::vector<std::uint32_t> bucket(n);
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
-      bucket[i] = grid.bucket(stored->samples[i].point);
-    out.cell_order = stable_bucket_order(bucket.data(), n, visit);
+      for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)
+        bucket[i] = grid.bucket(samples.at(i).point);
+      out.cell_order = stable_bucket_order(bucket.data(), n, visit);
+    }
   }
   auto sample_at = [&visit](std::size_t k) -> std::size_t { return visit.empty() ? k : visit[k]; };
-  // The samples queried k = begin .. begin + count - 1: in the set's own order (or made as they
-  // are queried), or gathered in the cell order.
-  auto chunk_of = [&](std::size_t begin, std::size_t count,
-                      std::vector<Sample>& scratch) -> const Sample* {
-    if (visit.empty()) return samples.chunk(begin, count, scratch);
-    scratch.resize(count);
-    for (std::size_t j = 0; j < count; ++j) scratch[j] = stored->samples[visit[begin + j]];
-    return scratch.data();
+  // The samples queried k = begin .. begin + count - 1: made as they are queried, or read in
+  // place, in the set's own order or through the cell order (generated samples never have one).
+  auto chunk_of = [&](std::size_t begin, std::size_t count, std::vector<Sample>& scratch) {
+    if constexpr (kGenerated) {
+      return ChunkSamples{samples.chunk(begin, count, scratch), nullptr};
+    } else {
+      const Sample* all = samples.set.samples.data();
+      return visit.empty() ? ChunkSamples{all + begin, nullptr}
+                           : ChunkSamples{all, visit.data() + begin};
+    }
   };
   // Whether the chunks prefetch the reference's per-vertex channel values (below).
   std::size_t reference_bytes = ref.faces.size() * sizeof(Triangle);
@@ -288,7 +289,7 @@ SampleDeviations deviations_of(const Samples& samples, const MonteCarloSamples* 
       const std::size_t count = std::min(n, begin + kChunk) - begin;
       points.resize(count);
       hints.resize(count);
-      const Sample* const chunk_samples = chunk_of(begin, count, scratch);
+      const ChunkSamples chunk_samples = chunk_of(begin, count, scratch);
       for (std::size_t j = 0; j < count; ++j) points[j] = chunk_samples[j].point;
       morton_order(points.data(), count, sample_box, order, keys);
       // The samples' positions and hints in that order. The reference's per-vertex channel
@@ -416,8 +417,7 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
                                     const PreparedMesh& target, const NearestPointIndex& index,
                                     const std::vector<Measure>& measures,
                                     const DeviationOptions& options) {
-  return deviations_of(StoredSamples{samples}, nullptr, &samples, reference, target, index,
-                       measures, options);
+  return deviations_of(StoredSamples{samples}, reference, target, index, measures, options);
 }
 
 SampleDeviations compute_deviations(const MonteCarloSamples& samples, const PreparedMesh& reference,
@@ -425,8 +425,7 @@ SampleDeviations compute_deviations(const MonteCarloSamples& samples, const Prep
                                     const std::vector<Measure>& measures,
                                     const DeviationOptions& options) {
   assert(&samples.mesh() == reference.mesh);
-  return deviations_of(GeneratedSamples{samples}, &samples, nullptr, reference, target, index,
-                       measures, options);
+  return deviations_of(GeneratedSamples{samples}, reference, target, index, measures, options);
 }
 
 }  // namespace meshdev

@@ -16,7 +16,7 @@ namespace meshdev {
 namespace {
 
 constexpr std::size_t kMaxSamples = std::size_t{1} << 31;  // refuse steps that would exhaust memory
-// Monte Carlo samples made per task of sample_surface's parallel loop.
+// Monte Carlo samples made per task of MonteCarloSamples::generate_all.
 constexpr std::size_t kGenerateRun = 4096;
 // Grid points within 1e-9 steps of an edge count as on it (0.9 / 0.1 is 8.999999999999998).
 constexpr double kGridSlack = 1e-9;
@@ -327,13 +327,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
     const MonteCarloSamples mc(mesh, target, o.seed, threads);
     const std::size_t offset = set.samples.size();
     set.samples.resize(offset + mc.size());  // raw storage: each sample placed by its thread
-    const auto runs = static_cast<std::int64_t>((mc.size() + kGenerateRun - 1) / kGenerateRun);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-    for (std::int64_t r = 0; r < runs; ++r) {
-      const std::size_t begin = static_cast<std::size_t>(r) * kGenerateRun;
-      mc.generate(begin, std::min(kGenerateRun, mc.size() - begin),
-                  set.samples.data() + offset + begin);
-    }
+    mc.generate_all(set.samples.data() + offset, threads);
     set.face_count += mc.size();
   }
 
@@ -433,6 +427,17 @@ void MonteCarloSamples::generate(std::size_t begin, std::size_t count, Sample* o
       ::new (static_cast<void*>(out + j)) Sample{
           bary[0] * a + bary[1] * b + bary[2] * c, face, kNoFace, bary, weight_, SampleKind::kFace};
     }
+  }
+}
+
+void MonteCarloSamples::generate_all(Sample* out, int threads) const {
+  const std::size_t n = size();
+  const auto runs = static_cast<std::int64_t>((n + kGenerateRun - 1) / kGenerateRun);
+#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) \
+    schedule(dynamic, 1)
+  for (std::int64_t r = 0; r < runs; ++r) {
+    const std::size_t begin = static_cast<std::size_t>(r) * kGenerateRun;
+    generate(begin, std::min(kGenerateRun, n - begin), out + begin);
   }
 }
 

@@ -95,6 +95,9 @@ class MonteCarloSamples {
   // Samples [begin, begin + count) into out[0, count). Precondition: begin + count <= size().
   // O(count + log F).
   void generate(std::size_t begin, std::size_t count, Sample* out) const;
+  // Every sample into out[0, size()), on `threads` (0 = OpenMP's default; the same for any
+  // count). out may be raw storage. O(size() + F).
+  void generate_all(Sample* out, int threads) const;
   // Sample i. O(log F).
   Sample at(std::size_t i) const;
   // "N face points (Monte Carlo, seed S)", as SampleSet::description says it.

@@ -427,7 +427,6 @@ void TriangleBvh::build(int threads) {
   std::vector<std::uint32_t> codes;  // with morton_splits_: each position's Morton code
   morton_splits_ = n >= kMortonFrom && out_of_spatial_order(prims.get(), n, root_centres.box());
   if (morton_splits_) sort_along_morton_curve(prims, n, root_centres.box(), team, codes);
-  const bool morton = morton_splits_;
   // The binary tree has at most 2n - 1 nodes; children are allocated in pairs, so subtrees can
   // be built in parallel (OpenMP tasks above kTaskBelow faces): above kTaskBelow faces from a
   // shared counter; a subtree of c <= kTaskBelow faces, which one thread builds, takes 2c ids
@@ -449,7 +448,7 @@ void TriangleBvh::build(int threads) {
     Prim* const first = prims.get();
     // A Morton split needs no pass over the range: the node's box is its children's, set after
     // them.
-    const bool by_code = morton && end - begin > kAlignBelow && depth < kMaxSahDepth;
+    const bool by_code = morton_splits_ && end - begin > kAlignBelow && depth < kMaxSahDepth;
     if (!known && !by_code)
       for (std::uint32_t i = begin; i < end; ++i) {
         bounds.extend(F4::load(first[i].lo), F4::load(first[i].hi));
