@@ -108,26 +108,51 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with
   }
 }
 
+namespace {
+
+// The identical-triangle rule of FaceEvaluator::evaluate for a hit within the check's reach: if
+// the query's source triangle has the target triangle's corners (in any order), the hit becomes
+// distance 0 with the source's barycentrics. Out of line: it is rarely reached.
+[[gnu::noinline]] void apply_identical_triangle(const Vec3& p, const Vec3& a, const Vec3& b,
+                                                const Vec3& c, const QueryHint& hint,
+                                                SurfaceHit& s) {
+  int perm[3];
+  Vec3 corners[3];
+  if (!match_corners(hint.source_corners(corners), a, b, c, perm)) return;
+  s.sq_distance = 0.0;
+  s.point = p;
+  for (int i = 0; i < 3; ++i) s.bary[i] = hint.source_bary[perm[i]];
+  int zeros = (s.bary[0] == 0.0) + (s.bary[1] == 0.0) + (s.bary[2] == 0.0);
+  s.feature = zeros >= 2 ? Feature::kVertex : (zeros == 1 ? Feature::kEdge : Feature::kFace);
+}
+
+// Both overloads of FaceEvaluator::evaluate, inlined into each: the corners are read from the
+// mesh (or the setup) in place and the closest point inlined, so an exact test makes no call
+// and no copy of the triangle (420 -> 359 instructions in the face region, docs/performance.md
+// §3).
+[[gnu::always_inline]] inline SurfaceHit evaluate_face(const FaceEvaluator& eval, const Vec3& p,
+                                                       std::uint32_t face, const Vec3& a,
+                                                       const Vec3& b, const Vec3& c,
+                                                       const TriangleFrame& frame,
+                                                       const QueryHint& hint) {
+  const TriangleHit h = closest_point_on_triangle(p, a, b, c, frame);
+  SurfaceHit s{face, h.sq_distance, h.bary, h.feature, h.point};
+  if (hint.has_source() && s.sq_distance <= eval.exact_check_sq)
+    apply_identical_triangle(p, a, b, c, hint, s);
+  return s;
+}
+
+}  // namespace
+
 SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const {
-  return evaluate(p, face, setup(face), hint);
+  const Triangle& t = mesh->faces[face];
+  const Vec3 &a = mesh->positions[t[0]], &b = mesh->positions[t[1]], &c = mesh->positions[t[2]];
+  return evaluate_face(*this, p, face, a, b, c, triangle_frame(a, b, c), hint);
 }
 
 SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const TriangleSetup& triangle,
                                    const QueryHint& hint) const {
-  const Vec3 &a = triangle.a, &b = triangle.b, &c = triangle.c;
-  TriangleHit h = closest_point_on_triangle(p, triangle);
-  SurfaceHit s{face, h.sq_distance, h.bary, h.feature, h.point};
-  int perm[3];
-  Vec3 corners[3];
-  if (hint.has_source() && s.sq_distance <= exact_check_sq &&
-      match_corners(hint.source_corners(corners), a, b, c, perm)) {
-    s.sq_distance = 0.0;
-    s.point = p;
-    for (int i = 0; i < 3; ++i) s.bary[i] = hint.source_bary[perm[i]];
-    int zeros = (s.bary[0] == 0.0) + (s.bary[1] == 0.0) + (s.bary[2] == 0.0);
-    s.feature = zeros >= 2 ? Feature::kVertex : (zeros == 1 ? Feature::kEdge : Feature::kFace);
-  }
-  return s;
+  return evaluate_face(*this, p, face, triangle.a, triangle.b, triangle.c, triangle, hint);
 }
 
 double FaceEvaluator::limit_sq(double best_sq) const {
