@@ -15,7 +15,11 @@
 //
 // usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2] [--repeats 3]
 //                           [--engines meshdev,embree,cgal] [--embree-hint] [--embree-float]
-//                           [--csv FILE] [--label NAME]
+//                           [--rounds R] [--csv FILE] [--label NAME]
+// --rounds R: after the table, meshdev and Embree (and Embree+hint with --embree-hint) are timed
+// once each, one after the other, R times over on each thread count, and the ratio of each round
+// is printed with the median and range: on a shared host whose speed drifts over minutes, the
+// best-of-N of engines timed minutes apart can differ by a drift that hits only one of them.
 #include <embree3/rtcore.h>
 #include <malloc.h>
 #include <omp.h>
@@ -242,6 +246,17 @@ struct EmbreeArrays {               // our own arrays, shared with Embree (no co
   std::vector<std::uint32_t> tris;  // 3 per face
 };
 
+EmbreeArrays embree_arrays(const meshdev::TriMesh& b) {
+  EmbreeArrays arrays;
+  arrays.vertices.resize(3 * b.num_vertices() + 1, 0.f);
+  for (std::size_t v = 0; v < b.num_vertices(); ++v)
+    for (int k = 0; k < 3; ++k) arrays.vertices[3 * v + k] = static_cast<float>(b.positions[v][k]);
+  arrays.tris.resize(3 * b.num_faces());
+  for (std::size_t f = 0; f < b.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) arrays.tris[3 * f + k] = b.faces[f][k];
+  return arrays;
+}
+
 // T = double (default): the callback reads our double positions and the double sample, so
 // slivers cannot make it pick a wrong triangle (measured: no slower than float). T = float
 // (--embree-float): Embree's own precision throughout, our float copy of the positions.
@@ -417,6 +432,7 @@ struct Options {
   std::vector<std::string> engines{"meshdev", "embree", "cgal"};
   bool embree_hint = false;
   bool embree_float = false;
+  int rounds = 0;  // > 0: also time meshdev and Embree alternately, this many rounds (main())
   std::string csv;
 };
 
@@ -433,8 +449,8 @@ std::vector<std::string> split(const std::string& s) {
   std::fprintf(stderr,
                "usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2]\n"
                "                          [--repeats 3] [--engines meshdev,embree,cgal]\n"
-               "                          [--embree-hint] [--embree-float] [--csv FILE]\n"
-               "                          [--label NAME]\n");
+               "                          [--embree-hint] [--embree-float] [--rounds R]\n"
+               "                          [--csv FILE] [--label NAME]\n");
   std::exit(2);
 }
 
@@ -464,6 +480,8 @@ Options parse(int argc, char** argv) {
       o.embree_hint = true;
     else if (s == "--embree-float")
       o.embree_float = true;
+    else if (s == "--rounds")
+      o.rounds = std::max(0, std::stoi(next()));
     else if (s == "--csv")
       o.csv = next();
     else if (s == "--label")
@@ -563,6 +581,26 @@ int main(int argc, char** argv) {
     attr_f.assign(attr_d.begin(), attr_d.end());
   }
 
+  // The timed loops: meshdev's whole compute_deviations call, Embree's queries (exact callback
+  // in double on our positions, or in float with --embree-float).
+  auto meshdev_queries = [&](const meshdev::NearestPointIndex& index, int th) {
+    meshdev::DeviationOptions options;  // what `meshdev compare` asks for
+    options.threads = th;
+    options.keep_nearest = false;
+    return meshdev::compute_deviations(set, plan.a, plan.b, index, plan.measures, options);
+  };
+  std::vector<float> pf;  // the query points for the peers, in the same order (filled below)
+  std::vector<double> pd;
+  auto embree_run = [&](const EmbreeArrays& arrays, RTCScene scene, bool hint, int th,
+                        PeerOut& out) {
+    static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is read as a double array");
+    if (!opt.embree_float)
+      embree_queries(scene, &b.positions[0].x, arrays.tris.data(), attr_f, pf, pd, hint, th, out);
+    else
+      embree_queries(scene, arrays.vertices.data(), arrays.tris.data(), attr_f, pf, pd, hint, th,
+                     out);
+  };
+
   // (a) meshdev.
   if (wants(opt, "meshdev")) {
     const MemProbe probe;
@@ -575,12 +613,7 @@ int main(int argc, char** argv) {
         bvh ? static_cast<double>(bvh->memory_bytes()) / static_cast<double>(b.num_faces()) : 0;
     for (int th : opt.threads) {
       meshdev::SampleDeviations dev;
-      const Timing t = time_best(opt.repeats, th, [&] {
-        meshdev::DeviationOptions options;  // what `meshdev compare` asks for
-        options.threads = th;
-        options.keep_nearest = false;
-        dev = meshdev::compute_deviations(set, plan.a, plan.b, *index, plan.measures, options);
-      });
+      const Timing t = time_best(opt.repeats, th, [&] { dev = meshdev_queries(*index, th); });
       Row r{"meshdev", th, build, t, static_cast<double>(n) / t.wall};
       std::tie(r.mean, r.max) = mean_max(dev.values[0]);
       r.bytes_per_face = bpf;
@@ -597,8 +630,8 @@ int main(int argc, char** argv) {
   }
 
   // Query points for the peers, in the same order.
-  std::vector<float> pf(3 * n);
-  std::vector<double> pd(3 * n);
+  pf.resize(3 * n);
+  pd.resize(3 * n);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p = set.samples[i].point;
     for (int k = 0; k < 3; ++k) {
@@ -609,14 +642,7 @@ int main(int argc, char** argv) {
 
   // (b) Embree 3.
   if (wants(opt, "embree")) {
-    EmbreeArrays arrays;
-    arrays.vertices.resize(3 * b.num_vertices() + 1, 0.f);
-    for (std::size_t v = 0; v < b.num_vertices(); ++v)
-      for (int k = 0; k < 3; ++k)
-        arrays.vertices[3 * v + k] = static_cast<float>(b.positions[v][k]);
-    arrays.tris.resize(3 * b.num_faces());
-    for (std::size_t f = 0; f < b.num_faces(); ++f)
-      for (int k = 0; k < 3; ++k) arrays.tris[3 * f + k] = b.faces[f][k];
+    const EmbreeArrays arrays = embree_arrays(b);
     PeerOut out;
     out.resize(n);
     double embree_mib = -1;
@@ -636,15 +662,8 @@ int main(int argc, char** argv) {
         if (embree_mib < 0) embree_mib = probe.mib();  // the first build, on fresh memory
       }
       for (bool hint : variants) {
-        const Timing t = time_best(opt.repeats, th, [&] {
-          static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 is read as a double array");
-          if (!opt.embree_float)
-            embree_queries(scene->scene, &b.positions[0].x, arrays.tris.data(), attr_f, pf, pd,
-                           hint, th, out);
-          else
-            embree_queries(scene->scene, arrays.vertices.data(), arrays.tris.data(), attr_f, pf, pd,
-                           hint, th, out);
-        });
+        const Timing t =
+            time_best(opt.repeats, th, [&] { embree_run(arrays, scene->scene, hint, th, out); });
         Row r{hint ? "embree+hint" : "embree", th, build, t, static_cast<double>(n) / t.wall};
         std::tie(r.mean, r.max) = mean_max(out.distance);
         r.struct_mib = embree_mib;
@@ -759,6 +778,51 @@ int main(int argc, char** argv) {
   if (!d_meshdev.empty()) std::printf("meshdev: %.3f equidistant faces per sample\n", meshdev_ties);
   std::printf("peak RSS of the process %.1f MiB; load average at end: %s\n", peak,
               load_end.c_str());
+
+  // (d) Interleaved rounds: one run of meshdev, then of Embree (and Embree+hint), round after
+  // round, so that a drift of the machine's speed over the minutes of a run (a shared host:
+  // 20-30 % seen within a session) falls on both alike. Each round's ratio is printed, then
+  // their median and range per thread count.
+  if (opt.rounds > 0 && wants(opt, "meshdev") && wants(opt, "embree")) {
+    auto index = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
+    const EmbreeArrays arrays = embree_arrays(b);
+    EmbreeScene scene(arrays, *std::max_element(opt.threads.begin(), opt.threads.end()));
+    scene.commit();
+    PeerOut out;
+    out.resize(n);
+    auto qps = [&](const Timing& t) { return static_cast<double>(n) / t.wall / 1e6; };
+    auto median = [](std::vector<double> v) {
+      std::sort(v.begin(), v.end());
+      const std::size_t m = v.size() / 2;
+      return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+    };
+    std::printf("\ninterleaved rounds (meshdev, embree%s, one run each per round):\n",
+                opt.embree_hint ? ", embree+hint" : "");
+    std::printf("%3s %5s %10s %10s %10s %12s %12s\n", "thr", "round", "meshdev", "embree",
+                "embree+hint", "meshdev/emb", "meshdev/e+h");
+    for (int th : opt.threads) {
+      std::vector<double> over, over_hint;
+      for (int r = 0; r < opt.rounds; ++r) {
+        const Timing m = time_best(1, th, [&] { meshdev_queries(*index, th); });
+        const Timing e = time_best(1, th, [&] { embree_run(arrays, scene.scene, false, th, out); });
+        Timing h{std::numeric_limits<double>::quiet_NaN(), 0};
+        if (opt.embree_hint)
+          h = time_best(1, th, [&] { embree_run(arrays, scene.scene, true, th, out); });
+        over.push_back(e.wall / m.wall);
+        if (opt.embree_hint) over_hint.push_back(h.wall / m.wall);
+        std::printf("%3d %5d %10.3f %10.3f %10.3f %12.2f %12.2f\n", th, r + 1, qps(m), qps(e),
+                    qps(h), e.wall / m.wall, h.wall / m.wall);
+      }
+      const auto [lo, hi] = std::minmax_element(over.begin(), over.end());
+      std::printf("%3d median meshdev/embree %.2f (range %.2f-%.2f)", th, median(over), *lo, *hi);
+      if (!over_hint.empty()) {
+        const auto [lo_h, hi_h] = std::minmax_element(over_hint.begin(), over_hint.end());
+        std::printf(", meshdev/embree+hint %.2f (range %.2f-%.2f)", median(over_hint), *lo_h,
+                    *hi_h);
+      }
+      std::printf(" over %d rounds\n", opt.rounds);
+    }
+  }
 
   // CSV.
   std::ostringstream csv;

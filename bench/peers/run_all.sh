@@ -8,15 +8,17 @@
 # Series: "pairs" (the issue's pairs and the real meshes), "faces" (A = torus100k, B = bumpy tori
 # from 10k to 1M faces), "samples" (torus100k -> 10k with 100k..3M samples).
 #
-# usage: bench/peers/run_all.sh            (env: BUILD=build-peers N=1000000 REPEATS=3
+# usage: bench/peers/run_all.sh            (env: BUILD=build-peers N=1000000 REPEATS=3 ROUNDS=5
 #                                            QUICK=1 for a 200k-sample smoke run, SKIP_MESHLAB=1)
+# ROUNDS: the pairs are also timed in interleaved rounds (peer_compare --rounds: meshdev, Embree
+# and Embree+hint one run each per round), whose median ratios hold on a host whose speed drifts.
 # Needs: apt-get install -y libembree-dev libcgal-dev libtbb-dev libbenchmark-dev meshlab xvfb xauth
 # The machine should be quiet: every loop prints its CPU share and the load average.
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 build="${BUILD:-$repo/build-peers}"
-n="${N:-1000000}" reps="${REPEATS:-3}"
-[[ "${QUICK:-0}" == 1 ]] && n=200000 reps=1
+n="${N:-1000000}" reps="${REPEATS:-3}" rounds="${ROUNDS:-5}"
+[[ "${QUICK:-0}" == 1 ]] && n=200000 reps=1 rounds=1
 out="$repo/results/performance"
 mkdir -p "$out" "$build"
 log="$out/peers.log"
@@ -45,8 +47,8 @@ pc="$build/bench/peers/peer_compare"
 say "== peer_compare: N=$n, best of $reps, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 while read -r label a b; do
   say "-- pairs|$label"
-  "$pc" "$a" "$b" "$n" --repeats "$reps" --embree-hint --label "pairs|$label" --csv "$csv" 2>&1 \
-    | sed '/^CSV$/,$d' | tee -a "$log"
+  "$pc" "$a" "$b" "$n" --repeats "$reps" --embree-hint --rounds "$rounds" --label "pairs|$label" \
+    --csv "$csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
 done < "$in/pairs.txt"
 for f in 10000 50176 99856 250000; do
   say "-- faces|torus100k->$f"
