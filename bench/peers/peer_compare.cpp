@@ -32,6 +32,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -515,6 +516,13 @@ std::pair<double, double> mean_max(const std::vector<T, Allocator>& d) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // glibc as the meshdev program sets it (apps/meshdev.cpp): large blocks from the heap, and freed
+  // memory kept by the process, so a repeat's deviation arrays (37 MB for 1M samples) reuse the
+  // pages of the run before instead of faulting fresh ones in (4,500 faults per run of 1M
+  // samples without it; the peers write into arrays allocated once, outside their timed loops).
+  // A failure (mallopt returns 0) costs speed only.
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);
   const Options opt = parse(argc, argv);
   const std::string load_start = loadavg();
 
