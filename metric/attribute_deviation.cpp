@@ -246,27 +246,23 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
       reference_bytes += g.reference->values.size() * sizeof(double);
   const bool prefetch_reference = reference_bytes >= options.prefetch_bytes;
 
+  // The per-sample output arrays of raw storage (PerSample) are only allocated: each sample's
+  // values are written once, below, for every measure (geometry, each channel group's, Cohen's,
+  // the texture colours'), so their pages are first touched by the threads that fill them.
+  // Allocated here, by the calling thread, they come from its heap, where a program that keeps
+  // freed memory (the meshdev program's mallopt) finds the blocks of its previous call: allocated
+  // by the team's threads, each in its own arena, the second thread's block was faulted in afresh
+  // at every call (peer_compare torus100k -> 10k, 1M samples, 2 threads: 1,970 -> 350 page faults
+  // per further repeat; docs/performance.md §3).
+  for (DeviationArray& values : out.values) values.resize(n);
+  out.nearest_feature.resize(n);
+  out.tie_count.resize(n);
 #pragma omp parallel num_threads(threads)
   {
-    // The per-sample output arrays. Those of raw storage (PerSample) are only allocated here:
-    // each sample's values are written once, below, for every measure (geometry, each channel
-    // group's, Cohen's, the texture colours'), so their pages are first touched by the threads
-    // that fill them. `nearest` is value-initialised, each array by one thread of the team (one
-    // after the other, all the arrays took 25 ms for 1M samples and four measures, a fifth of a
-    // 2-thread run). (The loop's barrier orders them before the chunks.)
-    const auto arrays = static_cast<std::int64_t>(measures.size() + 3);
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t a = 0; a < arrays; ++a) {
-      const auto m = static_cast<std::size_t>(a);
-      if (m < measures.size())
-        out.values[m].resize(n);
-      else if (m == measures.size())
-        out.nearest_feature.resize(n);
-      else if (m == measures.size() + 1)
-        out.tie_count.resize(n);
-      else if (options.keep_nearest)
-        out.nearest.resize(n);
-    }
+    // `nearest` is value-initialised, by one thread of the team while the others wait (the
+    // barrier of `single` orders it before the chunks).
+#pragma omp single
+    if (options.keep_nearest) out.nearest.resize(n);
     BatchHits batch;
     std::vector<Vec3> points;
     std::vector<QueryHint> hints;
