@@ -252,7 +252,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   // Allocated here, by the calling thread, they come from its heap, where a program that keeps
   // freed memory (the meshdev program's mallopt) finds the blocks of its previous call: allocated
   // by the team's threads, each in its own arena, the second thread's block was faulted in afresh
-  // at every call (peer_compare torus100k -> 10k, 1M samples, 2 threads: 1,970 -> 350 page faults
+  // at every call (peer_compare torus100k -> 10k, 1M samples, 2 threads: 1,970 -> 359 page faults
   // per further repeat; docs/performance.md §3).
   for (DeviationArray& values : out.values) values.resize(n);
   out.nearest_feature.resize(n);

@@ -65,12 +65,7 @@ struct TriangleSetup : TriangleFrame {
   Vec3 a, b, c;
 };
 inline TriangleSetup triangle_setup(const Vec3& a, const Vec3& b, const Vec3& c) {
-  TriangleSetup t;
-  static_cast<TriangleFrame&>(t) = triangle_frame(a, b, c);
-  t.a = a;
-  t.b = b;
-  t.c = c;
-  return t;
+  return {triangle_frame(a, b, c), a, b, c};
 }
 
 // closest_point_on_triangle(p, a, b, c) below, from the corners and their frame

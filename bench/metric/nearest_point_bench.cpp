@@ -42,6 +42,30 @@ void BM_BvhBuild(benchmark::State& state) {
 }
 BENCHMARK(BM_BvhBuild)->Arg(5)->Arg(6)->Arg(7)->Unit(benchmark::kMillisecond);
 
+// One exact test (FaceEvaluator::evaluate, the closest point on one face with its barycentrics
+// and feature) per iteration, for a point just above each face's centroid of a level-5 icosphere
+// in turn (the face region, where nearly every query's answer lies), no source hint. Under
+// callgrind, `--benchmark_filter=BM_ExactTest --benchmark_min_time=0.2` gives the instructions per
+// test.
+void BM_ExactTest(benchmark::State& state) {
+  const TriMesh& target = sphere(5);
+  const detail::FaceEvaluator eval(target, TieOptions{}, /*with_spheres=*/false, 1);
+  std::vector<Vec3> points;
+  for (const Triangle& t : target.faces) {
+    const Vec3 centroid =
+        (1.0 / 3.0) * (target.positions[t[0]] + target.positions[t[1]] + target.positions[t[2]]);
+    points.push_back(1.001 * centroid);  // the icosphere is centred on the origin
+  }
+  const QueryHint hint;
+  std::uint32_t face = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(eval.evaluate(points[face], face, hint));
+    face = face + 1 == points.size() ? 0 : face + 1;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+BENCHMARK(BM_ExactTest);
+
 // Single queries in sample order with the previous-hit hint, one thread.
 void BM_NearestQuery(benchmark::State& state) {
   const TriMesh& target = sphere(static_cast<int>(state.range(0)));
