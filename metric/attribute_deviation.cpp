@@ -245,11 +245,6 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     if (g.reference->storage == Storage::kPerVertex)
       reference_bytes += g.reference->values.size() * sizeof(double);
   const bool prefetch_reference = reference_bytes >= options.prefetch_bytes;
-  std::size_t target_bytes = 0;  // the same for the target's channels (after the queries, below)
-  for (const ChannelGroup& g : groups)
-    if (g.target->storage == Storage::kPerVertex)
-      target_bytes += g.target->values.size() * sizeof(double);
-  const bool prefetch_target = target_bytes >= options.prefetch_bytes;
 
   // The per-sample output arrays of raw storage (PerSample) are only allocated: each sample's
   // values are written once, below, for every measure (geometry, each channel group's, Cohen's,
@@ -318,20 +313,6 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
       for (std::size_t from = 0; from < count;) {
         const std::size_t to =
             from + index.find_batch(points.data() + from, hints.data() + from, count - from, batch);
-        // The target's per-vertex channel values at each answer's corners, prefetched for the
-        // deviation loop below as the reference's are before the queries: where samples are
-        // sparse on a large target each answer's face is new, and the loop's long body waited
-        // for its misses one sample at a time. Base and this build run at once, 1 thread each,
-        // `peer_compare torus100k.ply B 1000000 --engines meshdev`: B = torus1m with its faces
-        // shuffled +3.1 to +7.7 % (4 rounds), torus1m itself +0.6 to +4.6 % in 5 of 6 rounds
-        // (docs/performance.md §3). Only for targets of at least prefetch_bytes of such values.
-        if (prefetch_target)
-          for (std::size_t j = from; j < to; ++j) {
-            const Triangle& corners = tgt.faces[batch.ties_begin(j - from)->face];
-            for (const ChannelGroup& g : groups)
-              if (g.target->storage == Storage::kPerVertex)
-                for (int c = 0; c < 3; ++c) __builtin_prefetch(g.target->element(corners[c]));
-          }
         for (std::size_t j = from; j < to; ++j) {
           const std::size_t i = sample_at(begin + order[j]);
           const Sample& s = chunk_samples[order[j]];
