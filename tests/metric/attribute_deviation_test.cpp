@@ -94,6 +94,69 @@ TEST(AttributeDeviation, EqualsThePerTieMinimumOfAttributeDistanceOverTheBruteFo
     }
 }
 
+// Per-vertex channels only (normals with some of zero length, a scalar, UVs), which the
+// deviation loop computes inline for samples with one tie: the same numbers, bit for bit, as
+// the per-tie minimum of attribute_distance over the brute-force ties (the general path's
+// oracle above), on samples with one tie and with several.
+TEST(AttributeDeviation, InlinePerVertexChannelsEqualTheBruteForceOracle) {
+  auto per_vertex = [](TriMesh m, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    AttributeChannel& n = m.add_channel("normal", AttributeKind::kNormal, Storage::kPerVertex, 3);
+    for (std::size_t v = 0; v < m.positions.size(); ++v) {
+      n.values[3 * v] = v % 7 == 0 ? 0.0 : u(rng) - 0.5;
+      n.values[3 * v + 1] = v % 7 == 0 ? 0.0 : u(rng) - 0.5;
+      n.values[3 * v + 2] = v % 7 == 0 ? 0.0 : (v % 3 == 0 ? -1.0 : 1.0) * (0.2 + u(rng));
+    }
+    AttributeChannel& t =
+        m.add_channel("temperature", AttributeKind::kScalar, Storage::kPerVertex, 1);
+    for (double& x : t.values) x = 100 * u(rng);
+    AttributeChannel& uv =
+        m.add_channel("texcoord", AttributeKind::kTexCoord, Storage::kPerVertex, 2);
+    for (double& x : uv.values) x = u(rng);
+    return m;
+  };
+  const TriMesh a = per_vertex(test::grid(6, 1.0, 0.1), 5);  // vertices over B's: ties
+  const TriMesh b = per_vertex(test::grid(6, 1.0, 0.0), 6);
+  const AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
+  ASSERT_EQ(plan.measures.size(), 5u);  // geometry, normal x2, temperature, texcoord
+  SamplingOptions so;
+  so.faces = FaceSampling::kMonteCarlo;
+  so.target_count = 3000;
+  const SampleSet samples = sample_surface(a, so, 1.0);  // A's vertices (ties) and faces
+  const auto bvh = make_nearest_point_index(b, IndexKind::kBvh);
+  const auto brute = make_nearest_point_index(b, IndexKind::kBruteForce);
+  DeviationOptions options;
+  options.threads = 2;
+  const SampleDeviations d =
+      compute_deviations(samples, plan.a, plan.b, *bvh, plan.measures, options);
+  std::vector<SurfaceHit> ties;
+  std::size_t single = 0, several = 0, angles_beyond_90 = 0;
+  double fa[16], fb[16];
+  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+    const Sample& s = samples.samples[i];
+    ASSERT_EQ(d.values[0][i], brute->find(s.point, sample_hint(a, s), ties)) << "sample " << i;
+    ASSERT_EQ(d.tie_count[i], ties.size()) << "sample " << i;
+    (ties.size() == 1 ? single : several) += 1;
+    for (std::size_t m = 1; m < plan.measures.size(); ++m) {
+      const Measure& measure = plan.measures[m];
+      const AttributeChannel& ca = *plan.a.channel(measure.channel);
+      const AttributeChannel& cb = *plan.b.channel(measure.channel);
+      interpolate(ca, a, s.face, s.bary, s.vertex, fa);
+      double best = std::numeric_limits<double>::infinity();
+      for (const SurfaceHit& h : ties) {
+        interpolate(cb, b, h.face, h.bary, kNoFace, fb);
+        best = std::min(best, attribute_distance(measure.kind, fa, fb, ca.dim));
+      }
+      ASSERT_EQ(d.values[m][i], best) << measure.name << ", sample " << i;
+      angles_beyond_90 += measure.kind == MeasureKind::kNormalAngle && best > 90.0;
+    }
+  }
+  EXPECT_GT(single, 2000u);           // the inline path ...
+  EXPECT_GT(several, 10u);            // ... and the general one
+  EXPECT_GT(angles_beyond_90, 100u);  // both branches of the angle
+}
+
 // Monte Carlo samples made a chunk at a time as they are queried give the results of the stored
 // set, bit for bit: on a mesh whose faces are stored along the surface (queried in chunks of
 // their own order), and on the same mesh with its faces shuffled, whose samples call for the
