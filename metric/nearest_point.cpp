@@ -31,6 +31,7 @@ std::size_t NearestPointIndex::find_batch(const Vec3* points, const QueryHint* h
   out.first[0] = 0;
   out.packet_queries = 0;
   out.block_packet_queries = 0;
+  out.sparse_packet_queries = 0;
   out.guess_misses = 0;
   std::vector<SurfaceHit> ties;
   std::uint32_t previous = kNoFace;

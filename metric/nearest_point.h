@@ -73,7 +73,9 @@ struct BatchHits {
   std::vector<SurfaceHit> hits;
   std::size_t packet_queries = 0;  // how many were answered in packets (TriangleBvh), for tests
                                    // and benchmarks; the answers do not depend on it
-  std::size_t block_packet_queries = 0;  // of those, how many in block packets
+  std::size_t block_packet_queries = 0;   // of those, how many in block packets
+  std::size_t sparse_packet_queries = 0;  // ... and how many in sparse packets of faces (each
+                                          // query bounds only the blocks within its reach)
   std::size_t guess_misses = 0;  // of the packets' queries, how many were farther from the target
                                  // than their packet guessed (searched again in full)
 

@@ -65,6 +65,33 @@ std::size_t survivors_baseline(const float* bound, std::size_t count, float cuto
   return n;
 }
 
+// bounds_baseline's arithmetic on each block's own rows, four lanes (one block) at a time.
+std::size_t block_bounds_baseline(const BlockPlanes* const* blocks, std::size_t count,
+                                  const float q[3], float* bound) {
+  const F4 px = F4::splat(q[0]), py = F4::splat(q[1]), pz = F4::splat(q[2]);
+  const F4 zero = F4::splat(0.0f);
+  F4 least = F4::splat(std::numeric_limits<float>::infinity());
+  for (std::size_t j = 0; j < count; ++j) {
+    const BlockPlanes& b = *blocks[j];
+    auto plane = [&](int r) {  // row r..r+2: a unit normal, r+3: its offset
+      return F4::load(b.row[r]) * px + F4::load(b.row[r + 1]) * py + F4::load(b.row[r + 2]) * pz -
+             F4::load(b.row[r + 3]);
+    };
+    const F4 h = plane(kNx);
+    const F4 o = max(max(max(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
+    const F4 b2 = max(h * h + o * o, zero);  // NaN -> 0 (max returns its second operand)
+    least = min(b2, least);
+    simd::store(bound + 4 * j, b2);
+  }
+  float each[4];
+  simd::store(each, least);
+  float smallest = each[0];
+  for (int k = 1; k < 4; ++k) smallest = each[k] < smallest ? each[k] : smallest;
+  for (std::size_t i = 0; i < 4 * count; ++i)
+    if (bound[i] == smallest) return i;
+  return 0;
+}
+
 // Lane by lane, in double: the twin of the SIMD variants.
 void block_planes_baseline(const float corner[3][3][4], BlockPlanes& out) {
   out = BlockPlanes{};
@@ -116,7 +143,8 @@ void block_planes_baseline(const float corner[3][3][4], BlockPlanes& out) {
   }
 }
 
-const PlaneKernels kBaseline{bounds_baseline, survivors_baseline, block_planes_baseline};
+const PlaneKernels kBaseline{bounds_baseline, survivors_baseline, block_bounds_baseline,
+                             block_planes_baseline};
 
 bool cpu_has(SimdLevel level) {
 #if defined(MESHDEV_X86_KERNELS)

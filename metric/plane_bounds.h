@@ -32,8 +32,8 @@ constexpr double kMinCullNormal2 = 1e-20;
 // The planes (the rows above) of the up to four triangles of a BVH leaf block, by lane: computed
 // in double from the block's float corners and rounded to float (max_offset rounded up: the
 // largest |d|, |md_e|). Lanes never to be culled, empty lanes included: all zeros.
-struct BlockPlanes {
-  float row[kPlaneRows][4];  // [PlaneRow][lane]
+struct alignas(16) BlockPlanes {  // aligned: the baseline kernels load its rows as SSE vectors
+  float row[kPlaneRows][4];       // [PlaneRow][lane]
   float max_offset[4];
 };
 
@@ -50,6 +50,14 @@ struct PlaneKernels {
   // order, and returns how many. bound: as written by `bounds` of the same kernels. O(count).
   std::size_t (*survivors)(const float* bound, std::size_t count, float cutoff, std::size_t skip,
                            std::uint32_t* out);
+  // bound[4 j + lane] for the four lanes of *blocks[j], j < count: the bound of `bounds` above,
+  // read from each block's own rows (a packet's blocks, no per-packet rows), bit for bit what
+  // `bounds` of the same kernels gives for the same coefficients. Returns the index 4 j + lane
+  // of the smallest (the first of equal ones; 0 if all are +inf). `bound` must have room for
+  // 4 count rounded up to kPlaneLanes floats (`survivors` reads that far).
+  // Preconditions: count > 0; q finite. O(count).
+  std::size_t (*block_bounds)(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
+                              float* bound);
   // The planes of the four triangles whose corners are corner[corner][axis][lane] (float frame):
   // the normal n = ab x ac made unit, d = n.a, and per edge e (a->b, b->c, c->a) the unit
   // m_e = e x n and md_e = m_e.(its first corner); all in double, four lanes at once where the
@@ -75,8 +83,11 @@ namespace detail {
 // (plane_bounds_avx2.cpp, plane_bounds_avx512.cpp); only called after the CPU check.
 extern const PlaneKernels kPlaneKernelsAvx2;
 extern const PlaneKernels kPlaneKernelsAvx512;
-// The AVX2 + FMA block planes, which the AVX-512 kernels share (every AVX-512F CPU has both).
+// The AVX2 + FMA block planes and block bounds, which the AVX-512 kernels share (every AVX-512F
+// CPU has both).
 void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out);
+std::size_t block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
+                              float* bound);
 }  // namespace detail
 
 }  // namespace meshdev

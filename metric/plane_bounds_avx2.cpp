@@ -63,6 +63,58 @@ std::size_t survivors_avx2(const float* bound, std::size_t count, float cutoff, 
   return n;
 }
 
+// Two blocks per register (their four lanes each), with bounds_avx2's operations in its order;
+// an odd last block in the lower half alone (the same operations on 128 bits round the same).
+inline __m256 pair_row(const BlockPlanes& a, const BlockPlanes& b, int r) {
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(a.row[r])),
+                              _mm_loadu_ps(b.row[r]), 1);
+}
+
+}  // namespace
+
+namespace detail {
+
+std::size_t block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
+                              float* bound) {
+  const __m256 px = _mm256_set1_ps(q[0]), py = _mm256_set1_ps(q[1]), pz = _mm256_set1_ps(q[2]);
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 least = _mm256_set1_ps(__builtin_inff());
+  for (std::size_t j = 0; j < count; j += 2) {
+    const BlockPlanes& a = *blocks[j];
+    const BlockPlanes& b = j + 1 < count ? *blocks[j + 1] : a;
+    auto plane = [&](int r) {  // (n.p - d) with one rounding per coordinate
+      const __m256 t = _mm256_fmsub_ps(pair_row(a, b, r), px, pair_row(a, b, r + 3));
+      return _mm256_fmadd_ps(pair_row(a, b, r + 2), pz,
+                             _mm256_fmadd_ps(pair_row(a, b, r + 1), py, t));
+    };
+    const __m256 h = plane(kNx);
+    const __m256 o = _mm256_max_ps(
+        _mm256_max_ps(_mm256_max_ps(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
+    // NaN -> 0: max returns its second operand when either is NaN.
+    const __m256 b2 = _mm256_max_ps(_mm256_fmadd_ps(h, h, _mm256_mul_ps(o, o)), zero);
+    least = _mm256_min_ps(b2, least);
+    _mm256_storeu_ps(bound + 4 * j, b2);  // an odd last block: its copy in the upper half
+  }
+  __m128 m = _mm_min_ps(_mm256_castps256_ps128(least), _mm256_extractf128_ps(least, 1));
+  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+  const __m256 smallest = _mm256_broadcastss_ps(m);
+  for (std::size_t i = 0; i < 4 * count; i += 8) {
+    const int equal =
+        _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(bound + i), smallest, _CMP_EQ_OQ));
+    if (equal != 0) {
+      const std::size_t first =
+          i + static_cast<unsigned>(__builtin_ctz(static_cast<unsigned>(equal)));
+      return first < 4 * count ? first : 0;
+    }
+  }
+  return 0;
+}
+
+}  // namespace detail
+
+namespace {
+
 // Four doubles per register: the lanes of a block at once.
 struct D3 {
   __m256d x, y, z;
@@ -133,7 +185,8 @@ void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out) {
   _mm_storeu_ps(out.max_offset, _mm_castsi128_ps(_mm_sub_epi32(_mm_castps_si128(f), below)));
 }
 
-const PlaneKernels kPlaneKernelsAvx2{bounds_avx2, survivors_avx2, block_planes_avx2};
+const PlaneKernels kPlaneKernelsAvx2{bounds_avx2, survivors_avx2, block_bounds_avx2,
+                                     block_planes_avx2};
 
 }  // namespace detail
 

@@ -60,7 +60,8 @@ std::size_t survivors_avx512(const float* bound, std::size_t count, float cutoff
 }  // namespace
 
 namespace detail {
-const PlaneKernels kPlaneKernelsAvx512{bounds_avx512, survivors_avx512, block_planes_avx2};
+const PlaneKernels kPlaneKernelsAvx512{bounds_avx512, survivors_avx512, block_bounds_avx2,
+                                       block_planes_avx2};
 }  // namespace detail
 
 }  // namespace meshdev

@@ -66,7 +66,7 @@ constexpr double kMaxExtent = 1e140;
 // Packets (find_batch): at most kPacketSize consecutive queries whose box diagonal is at most
 // kPacketExtent mean longest edges of the target's faces (kFullPacketExtent once the packet holds
 // kFullPacket queries): at least kMinPacket of them make a packet of faces (if their reach holds
-// at most kMaxCandidates faces), kMinBlockPacket to kMinPacket - 1 (samples sparse on the target)
+// at most kMaxBlocks leaf blocks), kMinBlockPacket to kMinPacket - 1 (samples sparse on the target)
 // a block packet (if their reach holds at most kMaxBlocks leaf blocks). The rest are answered one
 // by one. With guessed reaches (below) the extent no longer widens the reach, and packets grew:
 // 1 mean edge (block packets 2) before, 3 with the cut at 2 from 16 queries now
@@ -81,9 +81,9 @@ constexpr std::size_t kMinPacket = 4;
 constexpr double kPacketExtent = 3.0;
 constexpr std::size_t kFullPacket = 16;
 constexpr double kFullPacketExtent = 2.0;
-constexpr std::size_t kMaxCandidates = 256;
 constexpr std::size_t kMinBlockPacket = 2;
 constexpr std::size_t kMaxBlocks = 64;
+constexpr std::size_t kDenseQueries = 3;
 // A packet's guess of its queries' distances: this factor times the largest distance of the
 // answers before it (used where it is less than half the packet's diagonal); the next packet
 // answers its centre in full instead where more than one query in kGuessMisses was farther than
@@ -1041,16 +1041,19 @@ struct TriangleBvh::PacketScratch {
   double q[kPacketSize][3];
   float qf[kPacketSize][3];
   double slack[kPacketSize];
-  std::vector<std::uint32_t> slots;  // the candidates: leaf slots (block << 2 | lane)
-  // The candidates' supporting planes in the float frame, as kPlaneRows rows of `stride` floats
-  // (metric/plane_bounds.h): unit normal n and offset d (h = n.p - d is the signed distance to
-  // the plane), and per edge the outward unit normal m_e within the plane and its offset
-  // (out_e = m_e.p - md_e is the distance beyond the edge's line). Computed in double, stored
-  // rounded to float. Faces the bound must not cull have all zeros (bound 0); padding lanes
-  // have d = -inf (bound +inf).
-  std::vector<float> rows;
-  std::vector<float> bound;
-  std::vector<std::uint32_t> survivors;
+  // Packets of faces: the supporting planes of the gathered blocks' faces in the float frame
+  // (metric/plane_bounds.h: unit normal n and offset d, h = n.p - d the signed distance to the
+  // plane, and per edge the outward unit normal m_e within the plane and its offset, out_e =
+  // m_e.p - md_e the distance beyond the edge's line), planes[b] for block[b]. Computed in
+  // double, stored rounded to float. Faces the bound must not cull have all zeros (bound 0);
+  // empty lanes have d = -inf (bound +inf). A query's bounds (4 per selected block) and the
+  // indices of those that survive the cutoff.
+  const BlockPlanes* block_rows[kMaxBlocks];  // sparse packets: block[b]'s planes, in the cache
+  BlockPlanes planes[kMaxBlocks];             // ... or here, where two blocks share a cache slot
+  std::uint32_t slots[4 * kMaxBlocks];        // dense packets: the candidates (block << 2 | lane)
+  std::vector<float> rows;                    // ... and their planes as kPlaneRows rows of `stride`
+  alignas(32) float bound[4 * kMaxBlocks + kPlaneLanes];
+  std::uint32_t survivors[4 * kMaxBlocks];
   std::vector<SurfaceHit> ties, center_ties;
   double center_distance = 0;       // the packet's centre query's answer (packet_bounds)
   std::vector<CachedPlanes> cache;  // 2^kCacheBits slots, allocated with the first packet
@@ -1063,6 +1066,7 @@ struct TriangleBvh::PacketScratch {
   alignas(16) float block_lo[3][kMaxBlocks + 4];
   alignas(16) float block_hi[3][kMaxBlocks + 4];
   std::size_t misses = 0;  // queries of the last packet farther from B than its guess
+  bool sparse = false;     // the last packet of faces was sparse (find_packet)
   // The face the last packet query evaluated first, and the face whose triangle's setup is
   // kept (both reset per batch).
   std::uint32_t seen_face = kNoFace;
@@ -1070,16 +1074,24 @@ struct TriangleBvh::PacketScratch {
   TriangleSetup setup;
 };
 
-const BlockPlanes& TriangleBvh::block_planes(std::uint32_t block, PacketScratch& scratch) const {
+void TriangleBvh::compute_block_planes(std::uint32_t block, BlockPlanes& out) const {
+  // From the block's float corners (in cache, unlike the mesh's): the bounds are then those of
+  // the float triangles, within corner_error_ of the faces, which every reach includes.
+  const Leaf& leaf = leaves_[block];
+  kernels_->block_planes(leaf.corner, out);
+  for (int lane = 0; lane < 4; ++lane)  // all zeros so far: d = -inf gives a bound of +inf
+    if (leaf.face[lane] == kNoFace) out.row[kD][lane] = -kInf;
+}
+
+const TriangleBvh::CachedPlanes& TriangleBvh::block_planes(std::uint32_t block,
+                                                           PacketScratch& scratch) const {
   if (scratch.cache.empty()) scratch.cache.resize(std::size_t{1} << kCacheBits);
   CachedPlanes& c = scratch.cache[(block * 0x9E3779B1u) >> (32 - kCacheBits)];
   if (c.block != block) {
-    // From the block's float corners (in cache, unlike the mesh's): the bounds are then those of
-    // the float triangles, within corner_error_ of the faces, which every reach includes.
-    kernels_->block_planes(leaves_[block].corner, c.planes);
+    compute_block_planes(block, c.planes);
     c.block = block;
   }
-  return c.planes;
+  return c;
 }
 
 std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, std::size_t count,
@@ -1090,6 +1102,7 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
   out.first[0] = 0;
   out.packet_queries = 0;
   out.block_packet_queries = 0;
+  out.sparse_packet_queries = 0;
   out.guess_misses = 0;
   // One scratch per thread, kept across batches: consecutive batches of a thread share faces
   // (the plane cache), and the buffers are not allocated again. A cache filled for another
@@ -1153,6 +1166,7 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     std::size_t answered = 0;
     if (j - i >= kMinPacket && slots_fit) {
       answered = find_packet(points, hints, i, j - i, previous, guess, scratch, out);
+      if (scratch.sparse) out.sparse_packet_queries += answered;
     } else if (j - i >= kMinBlockPacket) {
       answered = find_block_packet(points, hints, i, j - i, previous, guess, scratch, out);
       out.block_packet_queries += answered;
@@ -1218,32 +1232,6 @@ bool TriangleBvh::visit_blocks(const float lo[3], const float hi[3], double reac
   return true;
 }
 
-bool TriangleBvh::gather(const float lo[3], const float hi[3], double reach, std::size_t max_faces,
-                         std::vector<std::uint32_t>& slots) const {
-  slots.clear();
-  return visit_blocks(lo, hi, reach,
-                      [&](std::uint32_t block, const float*, const float*, const F4 qlo[3],
-                          const F4 qhi[3], F4 limit2) {
-                        const Leaf& leaf = leaves_[block];
-                        F4 tlo[3], thi[3];
-                        for (int k = 0; k < 3; ++k) {
-                          const F4 a = F4::load(leaf.corner[0][k]), b = F4::load(leaf.corner[1][k]),
-                                   c = F4::load(leaf.corner[2][k]);
-                          tlo[k] = min(min(a, b), c);
-                          thi[k] = max(max(a, b), c);
-                        }
-                        int keep = ~greater_mask(box_gap2(tlo, thi, qlo, qhi), limit2) & 0xf;
-                        while (keep != 0) {
-                          const int lane = __builtin_ctz(static_cast<unsigned>(keep));
-                          keep &= keep - 1;
-                          if (leaf.face[lane] == kNoFace) continue;
-                          if (slots.size() == max_faces) return false;
-                          slots.push_back(block << 2 | static_cast<std::uint32_t>(lane));
-                        }
-                        return true;
-                      });
-}
-
 bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double reach,
                                 PacketScratch& scratch) const {
   scratch.block_count = 0;
@@ -1259,6 +1247,16 @@ bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double rea
         }
         return true;
       });
+}
+
+std::size_t TriangleBvh::pad_blocks(PacketScratch& scratch) {
+  const std::size_t padded = (scratch.block_count + 3) / 4 * 4;
+  for (int k = 0; k < 3; ++k)  // padding lanes: never within reach
+    for (std::size_t b = scratch.block_count; b < padded; ++b) {
+      scratch.block_lo[k][b] = kInf;
+      scratch.block_hi[k][b] = kInf;
+    }
+  return padded;
 }
 
 double TriangleBvh::packet_bounds(const Vec3* points, const QueryHint* hints, std::size_t base,
@@ -1317,6 +1315,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // distance, and each answer is checked as in find_block_packet.
   const bool guessed = guess >= 0.0;
   scratch.misses = 0;
+  scratch.sparse = false;
   const std::size_t c = guessed ? n : n / 2;  // the centre answered in full (n: none)
   double initial_limit[kPacketSize], initial_reach[kPacketSize];
   const double packet_reach =
@@ -1327,56 +1326,128 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     return frame_reach(limit, floor_of(hint_of(k)), scratch.slack[k]);
   };
   if (!std::isfinite(packet_reach) ||
-      !gather(scratch.lo, scratch.hi, packet_reach, kMaxCandidates, scratch.slots) ||
-      scratch.slots.empty())
+      !gather_blocks(scratch.lo, scratch.hi, packet_reach, scratch) || scratch.block_count == 0)
     return 0;
-
-  // The candidates' faces in the mesh (their exact tests read them, in double), prefetched now,
-  // and their corners' positions after the planes below: otherwise a face's first exact test
-  // in the packet waited for its misses one at a time, which the evaluation's long body keeps
-  // from overlapping. Where the target's faces are stored in no spatial order (torus1m's
-  // shuffled) the exact tests took 20 % of the process; peer_compare torus100k -> that mesh
-  // +26 %, -> torus1m itself +2.5 %, the others within noise (docs/performance.md §3).
-  const std::size_t candidates = scratch.slots.size();
+  const std::size_t blocks = scratch.block_count;
+  const std::size_t padded = pad_blocks(scratch);
   const TriMesh& mesh = *eval_.mesh;
-  for (std::size_t idx = 0; idx < candidates; ++idx)
-    __builtin_prefetch(&mesh.faces[face_of(scratch.slots[idx])]);
-  // The candidates' planes, from the cache (consecutive packets share most of their faces).
-  const std::size_t stride = (candidates + kPlaneLanes - 1) / kPlaneLanes * kPlaneLanes;
-  scratch.rows.resize(kPlaneRows * stride);
-  float* rows = scratch.rows.data();
-  float max_offset = 0.0f;
-  for (std::size_t idx = 0; idx < candidates;) {
-    const std::uint32_t slot = scratch.slots[idx];
-    const BlockPlanes& f = block_planes(slot >> 2, scratch);
-    // A whole block in lane order (gather's usual output): four lanes per row at once.
-    if ((slot & 3) == 0 && idx + 4 <= candidates && scratch.slots[idx + 3] == slot + 3) {
-      for (int r = 0; r < kPlaneRows; ++r)
-        std::memcpy(rows + r * stride + idx, f.row[r], sizeof f.row[r]);
-      for (int lane = 0; lane < 4; ++lane) max_offset = std::max(max_offset, f.max_offset[lane]);
-      idx += 4;
-      continue;
-    }
-    const std::uint32_t lane = slot & 3;
-    for (int r = 0; r < kPlaneRows; ++r) rows[r * stride + idx] = f.row[r][lane];
-    max_offset = std::max(max_offset, f.max_offset[lane]);
-    ++idx;
-  }
-  for (int r = 0; r < kPlaneRows; ++r)  // padding lanes: bound +inf
-    std::fill(rows + r * stride + candidates, rows + (r + 1) * stride, r == kD ? -kInf : 0.0f);
-  for (std::size_t idx = 0; idx < candidates; ++idx) {
-    const Triangle& t = mesh.faces[face_of(scratch.slots[idx])];
-    for (int corner = 0; corner < 3; ++corner) __builtin_prefetch(&mesh.positions[t[corner]]);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const char* leaf = reinterpret_cast<const char*>(&leaves_[scratch.block[b]]);
+    __builtin_prefetch(leaf);
+    __builtin_prefetch(leaf + 64);
+    __builtin_prefetch(leaf + 128);
   }
 
-  // Each query: float lower bounds sqrt(h^2 + max(out_e, 0)^2) of all candidates, then the
+  // Two layouts of the candidates' planes (metric/plane_bounds.h), from the cache (consecutive
+  // packets share most of their blocks). Dense packets, at least kDenseQueries queries per
+  // block: the faces of those blocks whose float boxes lie within the packet's reach of its box,
+  // laid out once as rows of `stride` floats, and every query bounds all of them (`bounds`).
+  // Sparse packets: each block's planes as they are (a copy: two blocks of a packet may share a
+  // cache slot), and each query bounds the faces of only the blocks within its own reach
+  // (`block_bounds`). Either way the bound of candidate idx is bound[idx], and face_at(idx) its
+  // face.
+  const bool dense = n >= kDenseQueries * blocks;
+  scratch.sparse = !dense;
+  std::size_t candidates = 0, stride = 0;
+  float max_offset = 0.0f;
+  if (dense) {
+    const F4 qlo[3] = {F4::splat(scratch.lo[0]), F4::splat(scratch.lo[1]),
+                       F4::splat(scratch.lo[2])};
+    const F4 qhi[3] = {F4::splat(scratch.hi[0]), F4::splat(scratch.hi[1]),
+                       F4::splat(scratch.hi[2])};
+    const F4 limit2 = F4::splat(round_up_to_float(packet_reach * packet_reach * (1.0 + 1e-5)));
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const Leaf& leaf = leaves_[scratch.block[b]];
+      F4 tlo[3], thi[3];
+      for (int k = 0; k < 3; ++k) {
+        const F4 x = F4::load(leaf.corner[0][k]), y = F4::load(leaf.corner[1][k]),
+                 z = F4::load(leaf.corner[2][k]);
+        tlo[k] = min(min(x, y), z);
+        thi[k] = max(max(x, y), z);
+      }
+      int keep = ~greater_mask(box_gap2(tlo, thi, qlo, qhi), limit2) & 0xf;
+      while (keep != 0) {
+        const int lane = __builtin_ctz(static_cast<unsigned>(keep));
+        keep &= keep - 1;
+        if (leaf.face[lane] == kNoFace) continue;
+        __builtin_prefetch(&mesh.faces[leaf.face[lane]]);
+        scratch.slots[candidates++] = scratch.block[b] << 2 | static_cast<std::uint32_t>(lane);
+      }
+    }
+    if (candidates == 0) return 0;
+    stride = (candidates + kPlaneLanes - 1) / kPlaneLanes * kPlaneLanes;
+    scratch.rows.resize(kPlaneRows * stride);
+    float* rows = scratch.rows.data();
+    for (std::size_t idx = 0; idx < candidates;) {
+      const std::uint32_t slot = scratch.slots[idx];
+      const BlockPlanes& f = block_planes(slot >> 2, scratch).planes;
+      // A whole block in lane order: four lanes per row at once.
+      if ((slot & 3) == 0 && idx + 4 <= candidates && scratch.slots[idx + 3] == slot + 3) {
+        for (int r = 0; r < kPlaneRows; ++r)
+          std::memcpy(rows + r * stride + idx, f.row[r], sizeof f.row[r]);
+        for (int lane = 0; lane < 4; ++lane) max_offset = std::max(max_offset, f.max_offset[lane]);
+        idx += 4;
+        continue;
+      }
+      const std::uint32_t lane = slot & 3;
+      for (int r = 0; r < kPlaneRows; ++r) rows[r * stride + idx] = f.row[r][lane];
+      max_offset = std::max(max_offset, f.max_offset[lane]);
+      ++idx;
+    }
+    for (int r = 0; r < kPlaneRows; ++r)  // padding lanes: bound +inf
+      std::fill(rows + r * stride + candidates, rows + (r + 1) * stride, r == kD ? -kInf : 0.0f);
+  } else {
+    const CachedPlanes* cached[kMaxBlocks];
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const Leaf& leaf = leaves_[scratch.block[b]];
+      cached[b] = &block_planes(scratch.block[b], scratch);
+      for (int lane = 0; lane < 4; ++lane) {
+        if (leaf.face[lane] == kNoFace) continue;
+        __builtin_prefetch(&mesh.faces[leaf.face[lane]]);
+        max_offset = std::max(max_offset, cached[b]->planes.max_offset[lane]);
+      }
+    }
+    // Where two blocks of the packet share a cache slot, the later one evicted the earlier,
+    // whose planes are then computed again outside the cache.
+    for (std::size_t b = 0; b < blocks; ++b) {
+      scratch.block_rows[b] = &cached[b]->planes;
+      if (cached[b]->block == scratch.block[b]) continue;
+      compute_block_planes(scratch.block[b], scratch.planes[b]);
+      scratch.block_rows[b] = &scratch.planes[b];
+    }
+  }
+  std::uint32_t which[kMaxBlocks];            // sparse packets: the blocks a query bounds
+  const BlockPlanes* which_rows[kMaxBlocks];  // ... and their planes
+  auto face_at = [&](std::size_t idx) {
+    return dense ? leaves_[scratch.slots[idx] >> 2].face[scratch.slots[idx] & 3]
+                 : leaves_[scratch.block[which[idx >> 2]]].face[idx & 3];
+  };
+  // The candidates' faces in the mesh (above) and their corners' positions (the exact tests read
+  // them, in double), prefetched now: otherwise a face's first exact test in the packet waited for
+  // its misses one at a time, which the evaluation's long body keeps from overlapping. Where the
+  // target's faces are stored in no spatial order (torus1m's shuffled) the exact tests took
+  // 20 % of the process; peer_compare torus100k -> that mesh +26 %, -> torus1m itself +2.5 %,
+  // the others within noise (docs/performance.md §3).
+  auto prefetch_corners = [&](std::uint32_t face) {
+    const Triangle& t = mesh.faces[face];
+    for (int corner = 0; corner < 3; ++corner) __builtin_prefetch(&mesh.positions[t[corner]]);
+  };
+  if (dense) {
+    for (std::size_t idx = 0; idx < candidates; ++idx) prefetch_corners(face_at(idx));
+  } else {
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const Leaf& leaf = leaves_[scratch.block[b]];
+      for (int lane = 0; lane < 4; ++lane)
+        if (leaf.face[lane] != kNoFace) prefetch_corners(leaf.face[lane]);
+    }
+  }
+
+  // Each query: float lower bounds sqrt(h^2 + max(out_e, 0)^2) of its candidates, then the
   // survivors evaluated exactly, smallest bound first, until the bound passes the tie limit.
   // The bound's rounding is at most about 6 u (|p|_1 + max offset) (coefficients rounded to
   // float, three products and sums; fewer roundings where the kernel fuses multiply-adds) plus
   // 1e-9 (|p|_1 + 2) from the double computation of normals of faces with kappa <= kMaxKappa:
   // the margin 16 u (|p|_1 + max offset + 2) covers both with room.
-  scratch.bound.resize(stride);
-  scratch.survivors.resize(stride);
   for (std::size_t k = 0; k < n; ++k) {
     if (k > 0 && out.hits.size() >= BatchHits::kMaxHits) return k;  // answered k of n
     if (k == c) {
@@ -1386,6 +1457,35 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     const float* qf = scratch.qf[k];
     const QueryHint& hint = hint_of(k);
     const Vec3& p = points[base + k];
+    std::vector<SurfaceHit>& ties = scratch.ties;
+    std::size_t count = candidates;  // bounds computed
+    if (!dense) {  // the blocks within the query's initial reach, as find() tests boxes
+      const F4 pf[3] = {F4::splat(qf[0]), F4::splat(qf[1]), F4::splat(qf[2])};
+      const F4 box_cut =
+          F4::splat(round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5)));
+      std::size_t selected = 0;
+      for (std::size_t b = 0; b < padded; b += 4) {
+        F4 blo[3], bhi[3];
+        for (int a = 0; a < 3; ++a) {
+          blo[a] = F4::load(scratch.block_lo[a] + b);
+          bhi[a] = F4::load(scratch.block_hi[a] + b);
+        }
+        int keep = ~greater_mask(box_sq_distances_f4(blo, bhi, pf), box_cut) & 0xf;
+        while (keep != 0) {
+          const std::size_t at =
+              b + static_cast<unsigned>(__builtin_ctz(static_cast<unsigned>(keep)));
+          keep &= keep - 1;
+          if (at >= blocks) continue;
+          which[selected] = static_cast<std::uint32_t>(at);
+          which_rows[selected++] = scratch.block_rows[at];
+        }
+      }
+      if (selected == 0) {  // none within the guessed reach
+        answer_in_full(points, base, k, hint, kNoFace, start_face, scratch, out);
+        continue;
+      }
+      count = 4 * selected;
+    }
     const double margin =
         16.0 * kUnit * (std::fabs(qf[0]) + std::fabs(qf[1]) + std::fabs(qf[2]) + max_offset + 2.0);
     auto cutoff_of = [&](double r) {  // r: a reach
@@ -1393,14 +1493,18 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     };
     // All bounds, and the smallest (NaN bounds become 0: evaluated first, never culled).
     const std::size_t first_idx =
-        kernels_->bounds(rows, stride, candidates, qf, scratch.bound.data());
+        dense ? kernels_->bounds(scratch.rows.data(), stride, candidates, qf, scratch.bound)
+              : kernels_->block_bounds(which_rows, count / 4, qf, scratch.bound);
 
     // The face of smallest bound first: its exact distance gives the tie limit, usually final.
-    std::vector<SurfaceHit>& ties = scratch.ties;
     ties.clear();
+    const std::uint32_t first_face = face_at(first_idx);
+    if (first_face == kNoFace) {  // every bound +inf (only empty lanes)
+      answer_in_full(points, base, k, hint, kNoFace, start_face, scratch, out);
+      continue;
+    }
     // Where samples are dense on B, consecutive queries mostly share that face: its triangle's
     // setup is kept from the second query in a row that evaluates it first.
-    const std::uint32_t first_face = face_of(scratch.slots[first_idx]);
     if (first_face != scratch.setup_face && first_face == scratch.seen_face) {
       scratch.setup = eval_.setup(first_face);
       scratch.setup_face = first_face;
@@ -1413,8 +1517,8 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     double limit = eval_.limit(best), limit_sq = limit * limit;  // = eval_.limit_sq(best_sq)
     ties.push_back(first);
     float cutoff = cutoff_of(std::min(initial_reach[k], reach(k, limit)));
-    std::size_t left = kernels_->survivors(scratch.bound.data(), candidates, cutoff, first_idx,
-                                           scratch.survivors.data());
+    std::size_t left =
+        kernels_->survivors(scratch.bound, count, cutoff, first_idx, scratch.survivors);
     while (left > 0) {
       std::size_t pick = 0;
       for (std::size_t s = 1; s < left; ++s)
@@ -1422,7 +1526,9 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       const std::uint32_t idx = scratch.survivors[pick];
       if (scratch.bound[idx] > cutoff) break;
       scratch.survivors[pick] = scratch.survivors[--left];
-      const SurfaceHit h = eval_.evaluate(p, face_of(scratch.slots[idx]), hint);
+      const std::uint32_t face = face_at(idx);
+      if (face == kNoFace) continue;  // an empty lane (bound +inf) under a cutoff of +inf
+      const SurfaceHit h = eval_.evaluate(p, face, hint);
       if (h.sq_distance > limit_sq) continue;
       if (h.sq_distance < best_sq) {
         best_sq = h.sq_distance;
@@ -1434,16 +1540,25 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       ties.push_back(h);
     }
     if (guessed && !(limit_sq <= guess * guess)) {  // farther than guessed: the whole tree
-      QueryHint full = hint;
-      full.start_face = first.face;
-      append_answer(out, base + k, find(p, full, ties), ties);
-      ++scratch.misses;
+      answer_in_full(points, base, k, hint, first.face, start_face, scratch, out);
       continue;
     }
     detail::keep_ties(ties, limit_sq);
     append_answer(out, base + k, best, ties);
   }
   return n;
+}
+
+void TriangleBvh::answer_in_full(const Vec3* points, std::size_t base, std::size_t k,
+                                 const QueryHint& hint, std::uint32_t from,
+                                 std::uint32_t start_face, PacketScratch& scratch,
+                                 BatchHits& out) const {
+  QueryHint full = hint;
+  if (from != kNoFace) full.start_face = from;
+  if (full.start_face == kNoFace)
+    full.start_face = k > 0 ? out.hits[out.first[base + k - 1]].face : start_face;
+  append_answer(out, base + k, find(points[base + k], full, scratch.ties), scratch.ties);
+  ++scratch.misses;
 }
 
 std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* hints,
@@ -1469,11 +1584,7 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
       !gather_blocks(scratch.lo, scratch.hi, packet_reach, scratch) || scratch.block_count == 0)
     return 0;
   const std::size_t blocks = scratch.block_count;
-  for (int k = 0; k < 3; ++k)  // padding lanes: never within reach
-    for (std::size_t b = blocks; b < (blocks + 3) / 4 * 4; ++b) {
-      scratch.block_lo[k][b] = kInf;
-      scratch.block_hi[k][b] = kInf;
-    }
+  const std::size_t padded = pad_blocks(scratch);
 
   // Each query: the distances to the blocks' boxes, then the blocks within its reach, nearest
   // first, as in find(), with the radii started from the centre's bound instead of a start face.
@@ -1502,7 +1613,6 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
     // first (its exact distance makes the radius tight), then the nearest of the rest while it
     // is within the radius.
     alignas(16) float dist[kMaxBlocks + 4];
-    const std::size_t padded = (blocks + 3) / 4 * 4;
     for (std::size_t b = 0; b < padded; b += 4) {
       F4 blo[3], bhi[3];
       for (int a = 0; a < 3; ++a) {

@@ -119,6 +119,12 @@ class TriangleBvh final : public NearestPointIndex {
   std::size_t find_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
                           std::size_t n, std::uint32_t start_face, double guess,
                           PacketScratch& scratch, BatchHits& out) const;
+  // Query k of the packet at `base`, whose reach in the packet was not enough (a guess too
+  // small), answered by find() from face `from` (else its hint's start face, else the answer
+  // before it, else `start_face`); counted in scratch.misses.
+  void answer_in_full(const Vec3* points, std::size_t base, std::size_t k, const QueryHint& hint,
+                      std::uint32_t from, std::uint32_t start_face, PacketScratch& scratch,
+                      BatchHits& out) const;
   // The reach of the identical-triangle check for a query with this hint (FaceEvaluator):
   // the search never narrows below it. 0 without a source triangle.
   double floor_of(const QueryHint& hint) const { return hint.has_source() ? check_reach_ : 0.0; }
@@ -147,10 +153,12 @@ class TriangleBvh final : public NearestPointIndex {
   // Tests the (up to) four triangles of a leaf block: a float lower bound per triangle, then
   // the survivors exactly, nearest bound first.
   void search_leaf(const Leaf& leaf, Search& s) const;
-  // The planes of leaf block `block`, from the batch's cache or computed into it.
-  const BlockPlanes& block_planes(std::uint32_t block, PacketScratch& scratch) const;
-  // The face in leaf slot `slot` (block << 2 | lane).
-  std::uint32_t face_of(std::uint32_t slot) const { return leaves_[slot >> 2].face[slot & 3]; }
+  // The planes of leaf block `block` (kernels_->block_planes), with d = -inf in its empty lanes
+  // (a bound of +inf).
+  void compute_block_planes(std::uint32_t block, BlockPlanes& out) const;
+  // The planes of leaf block `block`, from the batch's cache or computed into it; the entry
+  // holds them until another block takes its slot.
+  const CachedPlanes& block_planes(std::uint32_t block, PacketScratch& scratch) const;
   // Answers queries [base, base + n) of a batch (sparse on the target) as a block packet: the
   // centre query in full, then one traversal gathers the leaf blocks within reach of any query
   // (at most kMaxBlocks), and each other query searches those blocks as find() would, nearest
@@ -168,10 +176,9 @@ class TriangleBvh final : public NearestPointIndex {
   // The leaf blocks within `reach` of [lo, hi] into scratch; false if more than kMaxBlocks.
   bool gather_blocks(const float lo[3], const float hi[3], double reach,
                      PacketScratch& scratch) const;
-  // The leaf slots (block << 2 | lane) of the faces whose float boxes lie within `reach` (float
-  // frame) of the box [lo, hi]; false if there are more than `max_faces`.
-  bool gather(const float lo[3], const float hi[3], double reach, std::size_t max_faces,
-              std::vector<std::uint32_t>& slots) const;
+  // Pads the gathered blocks' boxes to a multiple of 4 lanes with boxes never within reach;
+  // returns that multiple.
+  static std::size_t pad_blocks(PacketScratch& scratch);
 
   detail::FaceEvaluator eval_;
   const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)

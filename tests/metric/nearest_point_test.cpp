@@ -490,6 +490,43 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
     }
 }
 
+// About one query per face: packets of faces, most of them sparse (fewer than kDenseQueries
+// queries per gathered block), where each query bounds only the blocks within its own reach
+// (TriangleBvh::find_packet). Every answer must be the oracle's, on and off the surface, with and
+// without source hints, and on the stress meshes.
+TEST(NearestPoint, BvhSparsePacketsOfFacesEqualBruteForce) {
+  const TriMesh sphere = test::icosphere(3);
+  const std::pair<double, double> pushes[] = {
+      {0.0, 0.0}, {1e-9, 0.0}, {1e-3, 0.0}, {2e-2, 0.0}, {0.0, 0.3}};
+  for (const auto& [offset, outward] : pushes) {
+    for (bool hinted : {false, true}) {
+      const QueryStream qs = sparse_queries(sphere, 61, offset, hinted, outward, 1);
+      const std::string what = "offset " + std::to_string(offset) + " outward " +
+                               std::to_string(outward) + (hinted ? " hinted" : "");
+      const TriangleBvh bvh(sphere);
+      BatchHits batch;
+      ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
+                qs.points.size());
+      // Off the surface by a third of the radius, reaches span many blocks: dense packets.
+      if (outward == 0.0) {
+        EXPECT_GT(batch.sparse_packet_queries, qs.points.size() / 2) << what;
+      }
+      expect_batch_is_the_oracle(sphere, qs, what);
+      if (HasFailure()) return;
+    }
+  }
+  for (double scale : {1e-6, 1.0, 1e6})
+    for (double offset : {0.0, 1e8}) {
+      const TriMesh m = stress_mesh(67, scale, offset);
+      for (double off : {0.0, 1e-2 * scale}) {
+        expect_batch_is_the_oracle(m, sparse_queries(m, 71, off, true, 0.0, 1),
+                                   "stress scale " + std::to_string(scale) + " offset " +
+                                       std::to_string(offset) + " off " + std::to_string(off));
+        if (HasFailure()) return;
+      }
+    }
+}
+
 // Block packets guess their queries' distances from the answers before them and search again in
 // full where a query is farther than guessed (TriangleBvh::find_batch). Here the distances jump:
 // runs of queries on the surface (distance about 0) with one query in 7 lifted off it by a

@@ -160,6 +160,51 @@ TEST(PlaneBounds, NanBoundsBecomeZeroAndPaddingIsNeverTaken) {
   }
 }
 
+TEST(PlaneBounds, BlockBoundsEqualTheRowBoundsBitForBit) {
+  // The same coefficients as blocks of four lanes (BlockPlanes) and as rows: each level's
+  // block_bounds over any subset of the blocks, in any order, gives the bits its `bounds` gives.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-6.0, 6.0);
+  for (SimdLevel level : supported_levels()) {
+    SCOPED_TRACE(simd_level_name(level));
+    const PlaneKernels& k = plane_kernels(level);
+    for (std::size_t blocks : {1, 2, 3, 5, 8, 17, 64}) {
+      Candidates c = make_candidates(rng, 4 * blocks);
+      c.rows[kD * c.stride + 4 * (blocks - 1) + 3] = -kInf;  // an empty lane: +inf
+      if (blocks > 2) c.rows[kM0x * c.stride + 5] = std::numeric_limits<float>::quiet_NaN();
+      std::vector<BlockPlanes> planes(blocks);
+      for (std::size_t b = 0; b < blocks; ++b)
+        for (int r = 0; r < kPlaneRows; ++r)
+          for (int lane = 0; lane < 4; ++lane)
+            planes[b].row[r][lane] = c.rows[r * c.stride + 4 * b + lane];
+      std::vector<float> by_rows(c.stride), by_blocks(4 * blocks + kPlaneLanes, -1.0f);
+      for (int trial = 0; trial < 20; ++trial) {
+        const float q[3] = {static_cast<float>(u(rng)), static_cast<float>(u(rng)),
+                            static_cast<float>(u(rng))};
+        k.bounds(c.rows.data(), c.stride, c.count, q, by_rows.data());
+        // A subset of the blocks (odd sizes included), shuffled.
+        std::vector<std::uint32_t> which(blocks);
+        for (std::size_t b = 0; b < blocks; ++b) which[b] = static_cast<std::uint32_t>(b);
+        std::shuffle(which.begin(), which.end(), rng);
+        which.resize(1 + rng() % blocks);
+        std::vector<const BlockPlanes*> chosen;
+        for (std::uint32_t b : which) chosen.push_back(&planes[b]);
+        const std::size_t first = k.block_bounds(chosen.data(), chosen.size(), q, by_blocks.data());
+        std::size_t least = 0;
+        for (std::size_t j = 0; j < which.size(); ++j)
+          for (std::size_t lane = 0; lane < 4; ++lane) {
+            const float want = by_rows[4 * which[j] + lane];
+            const float got = by_blocks[4 * j + lane];
+            ASSERT_EQ(std::memcmp(&got, &want, sizeof got), 0)
+                << "block " << which[j] << " lane " << lane << ": " << got << " vs " << want;
+            if (got < by_blocks[least]) least = 4 * j + lane;
+          }
+        EXPECT_EQ(first, least);  // the first of the smallest
+      }
+    }
+  }
+}
+
 TEST(PlaneBounds, EveryKernelsBlockPlanesEqualTheDoubleTwin) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
