@@ -36,8 +36,10 @@
 //        traversal with the packet's box collects the faces within reach of any of them; each
 //        query then tests only those, with a float lower bound from precomputed unit plane and
 //        edge normals (one multiply-add per coordinate; SIMD kernels chosen at run time,
-//        metric/plane_bounds.h), and evaluates the survivors exactly, nearest bound first. Same
-//        answers as find(); packets whose reach holds too many faces fall back to find(). Runs
+//        metric/plane_bounds.h), and evaluates the survivors exactly, nearest bound first; where
+//        the packet has fewer than 3 queries per gathered leaf block, each query bounds only
+//        the faces of the blocks within its own reach. Same answers as find(); packets whose
+//        reach holds too many blocks fall back to find(). Runs
 //        of 2 or 3 (queries sparse on the target) form a block packet instead: the centre query
 //        bounds the others as above, one traversal gathers the leaf blocks within reach, and
 //        each query searches those blocks as find() does, nearest box first.
