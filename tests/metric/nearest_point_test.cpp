@@ -455,6 +455,23 @@ QueryStream sparse_queries(const TriMesh& m, std::uint64_t seed, double offset, 
 
 constexpr std::size_t kSparseStride = 4;  // one query per 4 faces: mostly block packets
 
+// Sparse query streams (sparse_queries: one per face, with source hints, on and just off the
+// surface) on the stress meshes of `mesh_seed` (slivers, tiny faces and nearly coplanar fans,
+// far from the origin and at extreme scales), each batch against the oracle, up to the first
+// failure.
+void stress_batches_are_the_oracle(std::uint64_t mesh_seed, std::uint64_t query_seed) {
+  for (double scale : {1e-6, 1.0, 1e6})
+    for (double offset : {0.0, 1e8}) {
+      const TriMesh m = stress_mesh(mesh_seed, scale, offset);
+      for (double off : {0.0, 1e-2 * scale}) {
+        expect_batch_is_the_oracle(m, sparse_queries(m, query_seed, off, true),
+                                   "stress scale " + std::to_string(scale) + " offset " +
+                                       std::to_string(offset) + " off " + std::to_string(off));
+        if (::testing::Test::HasFailure()) return;
+      }
+    }
+}
+
 TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
   const TriMesh sphere = test::icosphere(3);
   // (offset, outward): on the surface, just off it, and far off it (where a packet's reach is
@@ -477,17 +494,7 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
       if (HasFailure()) return;
     }
   }
-  // Slivers, tiny faces and nearly coplanar fans, far from the origin and at extreme scales.
-  for (double scale : {1e-6, 1.0, 1e6})
-    for (double offset : {0.0, 1e8}) {
-      const TriMesh m = stress_mesh(53, scale, offset);
-      for (double off : {0.0, 1e-2 * scale}) {
-        expect_batch_is_the_oracle(m, sparse_queries(m, 59, off, true),
-                                   "stress scale " + std::to_string(scale) + " offset " +
-                                       std::to_string(offset) + " off " + std::to_string(off));
-        if (HasFailure()) return;
-      }
-    }
+  stress_batches_are_the_oracle(53, 59);
 }
 
 // About one query per face: packets of faces, most of them sparse (fewer than kDenseQueries
@@ -515,16 +522,7 @@ TEST(NearestPoint, BvhSparsePacketsOfFacesEqualBruteForce) {
       if (HasFailure()) return;
     }
   }
-  for (double scale : {1e-6, 1.0, 1e6})
-    for (double offset : {0.0, 1e8}) {
-      const TriMesh m = stress_mesh(67, scale, offset);
-      for (double off : {0.0, 1e-2 * scale}) {
-        expect_batch_is_the_oracle(m, sparse_queries(m, 71, off, true, 0.0, 1),
-                                   "stress scale " + std::to_string(scale) + " offset " +
-                                       std::to_string(offset) + " off " + std::to_string(off));
-        if (HasFailure()) return;
-      }
-    }
+  stress_batches_are_the_oracle(67, 71);
 }
 
 // Block packets guess their queries' distances from the answers before them and search again in
