@@ -472,6 +472,22 @@ void stress_batches_are_the_oracle(std::uint64_t mesh_seed, std::uint64_t query_
     }
 }
 
+// The sphere's sparse stream of (seed, offset, hinted, outward, stride) in one batch of a fresh
+// BVH, whose counters the caller checks, then against the oracle; `what` names the stream.
+BatchHits sphere_batch(const TriMesh& sphere, std::uint64_t seed, double offset, bool hinted,
+                       double outward, std::size_t stride, std::string& what) {
+  const QueryStream qs = sparse_queries(sphere, seed, offset, hinted, outward, stride);
+  what = "offset " + std::to_string(offset) + " outward " + std::to_string(outward) +
+         (hinted ? " hinted" : "");
+  const TriangleBvh bvh(sphere);
+  BatchHits batch;
+  EXPECT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
+            qs.points.size())
+      << what;
+  expect_batch_is_the_oracle(sphere, qs, what);
+  return batch;
+}
+
 TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
   const TriMesh sphere = test::icosphere(3);
   // (offset, outward): on the surface, just off it, and far off it (where a packet's reach is
@@ -480,17 +496,12 @@ TEST(NearestPoint, BvhBlockPacketsEqualBruteForceWhereQueriesAreSparse) {
                                               {2e-2, 0.0}, {0.0, 0.3},  {1e-3, 0.3}};
   for (const auto& [offset, outward] : pushes) {
     for (bool hinted : {false, true}) {
-      const QueryStream qs = sparse_queries(sphere, 43, offset, hinted, outward, kSparseStride);
-      const std::string what = "offset " + std::to_string(offset) + " outward " +
-                               std::to_string(outward) + (hinted ? " hinted" : "");
-      const TriangleBvh bvh(sphere);
-      BatchHits batch;
-      ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
-                qs.points.size());
+      std::string what;
+      const BatchHits batch =
+          sphere_batch(sphere, 43, offset, hinted, outward, kSparseStride, what);
       // A good part of these queries must go through block packets, or this test checks nothing
       // new (a quarter: runs of 4 within three mean edges form packets of faces instead).
-      EXPECT_GT(batch.block_packet_queries, qs.points.size() / 4) << what;
-      expect_batch_is_the_oracle(sphere, qs, what);
+      EXPECT_GT(batch.block_packet_queries, batch.distance.size() / 4) << what;
       if (HasFailure()) return;
     }
   }
@@ -507,18 +518,12 @@ TEST(NearestPoint, BvhSparsePacketsOfFacesEqualBruteForce) {
       {0.0, 0.0}, {1e-9, 0.0}, {1e-3, 0.0}, {2e-2, 0.0}, {0.0, 0.3}};
   for (const auto& [offset, outward] : pushes) {
     for (bool hinted : {false, true}) {
-      const QueryStream qs = sparse_queries(sphere, 61, offset, hinted, outward, 1);
-      const std::string what = "offset " + std::to_string(offset) + " outward " +
-                               std::to_string(outward) + (hinted ? " hinted" : "");
-      const TriangleBvh bvh(sphere);
-      BatchHits batch;
-      ASSERT_EQ(bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch),
-                qs.points.size());
+      std::string what;
+      const BatchHits batch = sphere_batch(sphere, 61, offset, hinted, outward, 1, what);
       // Off the surface by a third of the radius, reaches span many blocks: dense packets.
       if (outward == 0.0) {
-        EXPECT_GT(batch.sparse_packet_queries, qs.points.size() / 2) << what;
+        EXPECT_GT(batch.sparse_packet_queries, batch.distance.size() / 2) << what;
       }
-      expect_batch_is_the_oracle(sphere, qs, what);
       if (HasFailure()) return;
     }
   }
