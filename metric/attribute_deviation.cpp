@@ -122,12 +122,11 @@ std::vector<InlineGroup> inline_groups(const std::vector<ChannelGroup>& groups,
 }
 
 // Component k of per-vertex `values` (dim per vertex) at barycentrics `bary` of the triangle
-// with corners `t`: interpolate()'s arithmetic, so the same bits. O(1).
+// with corners `t` (barycentric_mix, as interpolate). O(1).
 inline double mix(const double* values, int dim, const Triangle& t,
                   const std::array<double, 3>& bary, int k) {
   const std::size_t d = static_cast<std::size_t>(dim);
-  return bary[0] * values[t[0] * d + k] + bary[1] * values[t[1] * d + k] +
-         bary[2] * values[t[2] * d + k];
+  return barycentric_mix(bary, values + t[0] * d, values + t[1] * d, values + t[2] * d, k);
 }
 
 // Writes sample i's deviations of every inline group: from the reference's values at `bary_a`

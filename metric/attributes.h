@@ -85,6 +85,14 @@ struct AttributePlan {
 AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const AttributeOptions& options,
                               const std::string& label_a, const std::string& label_b);
 
+// Component k of the value at barycentrics `bary` between the corner values a, b and c: the one
+// barycentric mix of the metric (interpolate, and the deviation loop's inline path), so both
+// give the same bits. O(1).
+inline double barycentric_mix(const std::array<double, 3>& bary, const double* a, const double* b,
+                              const double* c, int k) {
+  return bary[0] * a[k] + bary[1] * b[k] + bary[2] * c[k];
+}
+
 // Value of `channel` at barycentrics `bary` of `face` (kNoFace: at vertex `vertex`, for point
 // clouds), written to out[0..dim). Barycentric interpolation in corner order 0, 1, 2; per-corner
 // channels use the corners of that face, per-face channels are constant on it. O(dim).
@@ -106,7 +114,7 @@ inline void interpolate(const AttributeChannel& channel, const TriMesh& mesh, st
   for (int i = 0; i < 3; ++i)
     v[i] = channel.storage == Storage::kPerVertex ? channel.element(mesh.faces[face][i])
                                                   : channel.element(3 * face + i);
-  auto mix = [&](int k) { return bary[0] * v[0][k] + bary[1] * v[1][k] + bary[2] * v[2][k]; };
+  auto mix = [&](int k) { return barycentric_mix(bary, v[0], v[1], v[2], k); };
   // Normals and colours: all three read before any is written (out may alias the channel, so
   // otherwise each store must land before the next read), which lets GCC store 16 + 8 bytes, the
   // widths that to_form and form_distance load them with. Three 8-byte stores cannot forward to a
