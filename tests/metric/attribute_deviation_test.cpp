@@ -114,12 +114,19 @@ TEST(AttributeDeviation, InlinePerVertexChannelsEqualTheBruteForceOracle) {
     AttributeChannel& uv =
         m.add_channel("texcoord", AttributeKind::kTexCoord, Storage::kPerVertex, 2);
     for (double& x : uv.values) x = u(rng);
+    // Raw values of 3 and 4 components: the unrolled distance and the one of run-time dimension.
+    for (int dim : {3, 4}) {
+      AttributeChannel& c = m.add_channel("stress" + std::to_string(dim), AttributeKind::kScalar,
+                                          Storage::kPerVertex, dim);
+      for (double& x : c.values) x = 10 * u(rng) - 5;
+    }
     return m;
   };
   const TriMesh a = per_vertex(test::grid(6, 1.0, 0.1), 5);  // vertices over B's: ties
   const TriMesh b = per_vertex(test::grid(6, 1.0, 0.0), 6);
   const AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
-  ASSERT_EQ(plan.measures.size(), 5u);  // geometry, normal x2, temperature, texcoord
+  // geometry, normal x2, temperature, texcoord, stress3, stress4
+  ASSERT_EQ(plan.measures.size(), 7u);
   SamplingOptions so;
   so.faces = FaceSampling::kMonteCarlo;
   so.target_count = 3000;
