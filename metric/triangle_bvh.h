@@ -170,11 +170,6 @@ class TriangleBvh final : public NearestPointIndex {
   std::size_t find_block_packet(const Vec3* points, const QueryHint* hints, std::size_t base,
                                 std::size_t n, std::uint32_t start_face, double guess,
                                 PacketScratch& scratch, BatchHits& out) const;
-  // Calls at_block(leaf block, its box lo, hi, the box [lo, hi] as splats, the squared reach)
-  // for every leaf block whose box lies within `reach` (float frame) of the box [lo, hi], until
-  // it returns false; returns false if it did.
-  template <class AtBlock>
-  bool visit_blocks(const float lo[3], const float hi[3], double reach, AtBlock&& at_block) const;
   // The leaf blocks within `reach` of [lo, hi] into scratch; false if more than kMaxBlocks.
   bool gather_blocks(const float lo[3], const float hi[3], double reach,
                      PacketScratch& scratch) const;
