@@ -1197,9 +1197,10 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
 // Depth first from the root, opening every node whose box lies within reach of [lo, hi].
 // Without a branch per child: each of a node's four children is written both to the stack and
 // to the blocks, and counted where it is kept (inner nodes on the stack, leaf blocks in the
-// list), so the blocks come in the order the loop over kept children gave them. The children
-// kept vary from packet to packet, and that loop branched on each (cachegrind's branch model:
-// 1.8 M mispredictions there for 1 M queries of torus100k -> 1m); chunk-interleaved,
+// list); the blocks come depth first, a node's children in lane order, as from a loop over the
+// kept children. The children kept vary from packet to packet, and such a loop branched on each
+// (cachegrind's branch model: 1.8 M mispredictions there for 1 M queries of torus100k -> 1m,
+// before 186b11d); chunk-interleaved,
 // torus100k -> 1m +1.3-1.9 %, torus1m -> 100k +1.5 %, torus100k -> 10k +0.2-2.6 %
 // (docs/performance.md §3).
 bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double reach,
