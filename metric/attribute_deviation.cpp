@@ -133,11 +133,11 @@ inline double mix(const double* values, int dim, const Triangle& t,
 // reference's face `ta` and `bary_b` of the target's face `tb`: the squared differences summed in
 // component order, as form_distance sums them. Dim > 0: the group's dimension as a constant, so
 // the loop unrolls without its set-up (the general loop cost as much for one scalar as for
-// three); Dim = 0: `dim` at run time. O(dim).
+// three); Dim = 0: `run_dim` at run time. O(dim).
 template <int Dim>
 double raw_distance(const InlineGroup& g, const Triangle& ta, const std::array<double, 3>& bary_a,
-                    const Triangle& tb, const std::array<double, 3>& bary_b, int dim = Dim) {
-  if (Dim > 0) dim = Dim;
+                    const Triangle& tb, const std::array<double, 3>& bary_b, int run_dim = 0) {
+  const int dim = Dim > 0 ? Dim : run_dim;
   double sum = 0.0;
   for (int c = 0; c < dim; ++c) {
     const double d = mix(g.reference, dim, ta, bary_a, c) - mix(g.target, dim, tb, bary_b, c);
@@ -164,10 +164,9 @@ void inline_deviations(const std::vector<InlineGroup>& groups, const Triangle& t
                        mix(g.reference, 3, ta, bary_a, 2)});
       const Vec3 nb = unit_normal({mix(g.target, 3, tb, bary_b, 0), mix(g.target, 3, tb, bary_b, 1),
                                    mix(g.target, 3, tb, bary_b, 2)});
-      const double chord = norm(na - nb);  // unit_normal_distance's, for either kind
+      const double chord = norm(na - nb);
       for (std::size_t k = 0; k < g.columns.size(); ++k)
-        g.columns[k][i] =
-            g.kinds[k] == MeasureKind::kNormalEuclidean ? chord : unit_normal_angle(chord, na, nb);
+        g.columns[k][i] = unit_normal_distance(g.kinds[k], chord, na, nb);
       continue;
     }
     double d;
@@ -455,8 +454,9 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
               }
               if (g.unit_normals) {
                 const Vec3 nb = unit_normal({fb[0], fb[1], fb[2]});
+                const double chord = norm(na - nb);
                 for (std::size_t k = 0; k < g.measures.size(); ++k)
-                  use(k, unit_normal_distance(g.kinds[k], na, nb));
+                  use(k, unit_normal_distance(g.kinds[k], chord, na, nb));
                 return;
               }
               g.forms.transform(fb, dim, form_b, at_b);

@@ -170,11 +170,14 @@ inline double unit_normal_angle(double chord, const Vec3& n, const Vec3& m) {
   return radians * (180.0 / kPi);
 }
 // form_distance of two unit normals (from unit_normal) under a kind with is_unit_normal_measure,
-// inline for the deviation loop (form_distance calls it). kNormalEuclidean: the chord |n - m|;
-// kNormalAngle: unit_normal_angle. O(1).
-inline double unit_normal_distance(MeasureKind kind, const Vec3& n, const Vec3& m) {
-  const double chord = norm(n - m);
+// given their chord |n - m| (so a caller with both normal measures computes it once), inline for
+// the deviation loop. kNormalEuclidean: the chord; kNormalAngle: unit_normal_angle. O(1).
+inline double unit_normal_distance(MeasureKind kind, double chord, const Vec3& n, const Vec3& m) {
   return kind == MeasureKind::kNormalEuclidean ? chord : unit_normal_angle(chord, n, m);
+}
+// The same with the chord computed here (form_distance calls it). O(1).
+inline double unit_normal_distance(MeasureKind kind, const Vec3& n, const Vec3& m) {
+  return unit_normal_distance(kind, norm(n - m), n, m);
 }
 
 // Parses a --normals value: auto, file, uniform (= average), area, angle.
