@@ -15,11 +15,17 @@
 //
 // usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2] [--repeats 3]
 //                           [--engines meshdev,embree,cgal] [--embree-hint] [--embree-float]
-//                           [--rounds R] [--csv FILE] [--label NAME]
+//                           [--rounds R] [--csv FILE] [--label NAME] [--ab R [--ab-chunk C]]
 // --rounds R: after the table, meshdev and Embree (and Embree+hint with --embree-hint) are timed
 // once each, one after the other, R times over on each thread count, and the ratio of each round
 // is printed with the median and range: on a shared host whose speed drifts over minutes, the
 // best-of-N of engines timed minutes apart can differ by a drift that hits only one of them.
+// --ab R: instead of the above, meshdev alone, variant 0 against variant 1 of an experiment
+// (metric/ab_variant.h): the samples are cut into chunks of C (65536), each chunk is answered by
+// both variants in turn, which goes first alternating from chunk to chunk and round to round, and
+// each round's ratio (variant 0's time / variant 1's: > 1 when variant 1 is faster) is printed
+// with the median and range over R rounds, per thread count of --threads. Also checks that both
+// variants give the same deviations and tie counts, bit for bit.
 #include <embree3/rtcore.h>
 #include <malloc.h>
 #include <omp.h>
@@ -46,6 +52,7 @@
 #include <string>
 #include <vector>
 
+#include "metric/ab_variant.h"
 #include "metric/attribute_deviation.h"
 #include "metric/attributes.h"
 #include "metric/io/mesh_io.h"
@@ -434,6 +441,8 @@ struct Options {
   bool embree_hint = false;
   bool embree_float = false;
   int rounds = 0;  // > 0: also time meshdev and Embree alternately, this many rounds (main())
+  int ab = 0;      // > 0: only meshdev's variants 0 and 1, this many rounds (run_ab)
+  std::size_t ab_chunk = 65536;  // samples per chunk of --ab
   std::string csv;
 };
 
@@ -451,7 +460,7 @@ std::vector<std::string> split(const std::string& s) {
                "usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2]\n"
                "                          [--repeats 3] [--engines meshdev,embree,cgal]\n"
                "                          [--embree-hint] [--embree-float] [--rounds R]\n"
-               "                          [--csv FILE] [--label NAME]\n");
+               "                          [--csv FILE] [--label NAME] [--ab R [--ab-chunk C]]\n");
   std::exit(2);
 }
 
@@ -483,6 +492,10 @@ Options parse(int argc, char** argv) {
       o.embree_float = true;
     else if (s == "--rounds")
       o.rounds = std::max(0, std::stoi(next()));
+    else if (s == "--ab")
+      o.ab = std::max(0, std::stoi(next()));
+    else if (s == "--ab-chunk")
+      o.ab_chunk = std::max<std::size_t>(1, std::stoull(next()));
     else if (s == "--csv")
       o.csv = next();
     else if (s == "--label")
@@ -511,6 +524,79 @@ std::pair<double, double> mean_max(const std::vector<T, Allocator>& d) {
   double sum = 0, mx = 0;
   for (T x : d) sum += static_cast<double>(x), mx = std::max(mx, static_cast<double>(x));
   return {d.empty() ? 0 : sum / static_cast<double>(d.size()), mx};
+}
+
+double median_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t m = v.size() / 2;
+  return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// --ab R (see the top of this file): meshdev's variants 0 and 1 chunk-interleaved. Returns the
+// process's exit status: 1 if the variants' results differ.
+int run_ab(const Options& opt, const meshdev::SampleSet& set, const meshdev::AttributePlan& plan,
+           const meshdev::NearestPointIndex& index) {
+  std::vector<meshdev::SampleSet> chunks;
+  for (std::size_t begin = 0; begin < set.samples.size(); begin += opt.ab_chunk) {
+    const std::size_t end = std::min(set.samples.size(), begin + opt.ab_chunk);
+    meshdev::SampleSet chunk;
+    chunk.samples.assign(set.samples.begin() + static_cast<std::ptrdiff_t>(begin),
+                         set.samples.begin() + static_cast<std::ptrdiff_t>(end));
+    chunk.step = set.step;
+    chunk.face_count = end - begin;
+    chunk.equal_weight = set.equal_weight;
+    chunk.description = set.description;
+    chunks.push_back(std::move(chunk));
+  }
+  auto run = [&](const meshdev::SampleSet& chunk, int variant, int th) {
+    meshdev::detail::set_ab_variant(variant);
+    meshdev::DeviationOptions options;  // as meshdev_queries in main()
+    options.threads = th;
+    options.keep_nearest = false;
+    return meshdev::compute_deviations(chunk, plan.a, plan.b, index, plan.measures, options);
+  };
+  // Both variants' answers, compared once (deviations bit for bit, tie counts).
+  std::size_t differ = 0;
+  for (const meshdev::SampleSet& chunk : chunks) {
+    const meshdev::SampleDeviations d0 = run(chunk, 0, opt.threads.back());
+    const meshdev::SampleDeviations d1 = run(chunk, 1, opt.threads.back());
+    for (std::size_t i = 0; i < chunk.samples.size(); ++i) {
+      bool same = d0.tie_count[i] == d1.tie_count[i];
+      for (std::size_t m = 0; m < d0.values.size(); ++m)
+        same = same && std::memcmp(&d0.values[m][i], &d1.values[m][i], sizeof(double)) == 0;
+      differ += same ? 0 : 1;
+    }
+  }
+  std::printf("\nA/B (variant 0 = present code, 1 = candidate), %zu chunks of <= %zu samples: ",
+              chunks.size(), opt.ab_chunk);
+  if (differ > 0)
+    std::printf("RESULTS DIFFER for %zu of %zu samples\n", differ, set.samples.size());
+  else
+    std::printf("same deviations and tie counts, bit for bit\n");
+  std::printf("%3s %5s %12s %12s %12s\n", "thr", "round", "v0 M q/s", "v1 M q/s", "v0/v1 time");
+  const double n = static_cast<double>(set.samples.size());
+  for (int th : opt.threads) {
+    std::vector<double> ratio;
+    for (int r = 0; r < opt.ab; ++r) {
+      double t[2] = {0.0, 0.0};
+      for (std::size_t c = 0; c < chunks.size(); ++c) {
+        const int first = static_cast<int>((c + static_cast<std::size_t>(r)) % 2);
+        for (int v : {first, 1 - first}) {
+          const auto t0 = Clock::now();
+          run(chunks[c], v, th);
+          t[v] += seconds_since(t0);
+        }
+      }
+      ratio.push_back(t[0] / t[1]);
+      std::printf("%3d %5d %12.3f %12.3f %12.4f\n", th, r + 1, n / t[0] / 1e6, n / t[1] / 1e6,
+                  t[0] / t[1]);
+    }
+    const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
+    std::printf("%3d median v0/v1 %.4f (range %.4f-%.4f) over %d rounds\n", th, median_of(ratio),
+                *lo, *hi, opt.ab);
+  }
+  meshdev::detail::set_ab_variant(0);
+  return differ > 0 ? 1 : 0;
 }
 
 }  // namespace
@@ -587,6 +673,11 @@ int main(int argc, char** argv) {
     else
       for (std::size_t v = 0; v < b.num_vertices(); ++v) attr_d[3 * v] = 1;
     attr_f.assign(attr_d.begin(), attr_d.end());
+  }
+
+  if (opt.ab > 0) {
+    auto index = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
+    return run_ab(opt, set, plan, *index);
   }
 
   // The timed loops: meshdev's whole compute_deviations call, Embree's queries (exact callback
@@ -799,11 +890,6 @@ int main(int argc, char** argv) {
     PeerOut out;
     out.resize(n);
     auto qps = [&](const Timing& t) { return static_cast<double>(n) / t.wall / 1e6; };
-    auto median = [](std::vector<double> v) {
-      std::sort(v.begin(), v.end());
-      const std::size_t m = v.size() / 2;
-      return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-    };
     std::printf("\ninterleaved rounds (meshdev, embree%s, one run each per round):\n",
                 opt.embree_hint ? ", embree+hint" : "");
     std::printf("%3s %5s %10s %10s %10s %12s %12s\n", "thr", "round", "meshdev", "embree",
@@ -822,10 +908,11 @@ int main(int argc, char** argv) {
                     qps(h), e.wall / m.wall, h.wall / m.wall);
       }
       const auto [lo, hi] = std::minmax_element(over.begin(), over.end());
-      std::printf("%3d median meshdev/embree %.2f (range %.2f-%.2f)", th, median(over), *lo, *hi);
+      std::printf("%3d median meshdev/embree %.2f (range %.2f-%.2f)", th, median_of(over), *lo,
+                  *hi);
       if (!over_hint.empty()) {
         const auto [lo_h, hi_h] = std::minmax_element(over_hint.begin(), over_hint.end());
-        std::printf(", meshdev/embree+hint %.2f (range %.2f-%.2f)", median(over_hint), *lo_h,
+        std::printf(", meshdev/embree+hint %.2f (range %.2f-%.2f)", median_of(over_hint), *lo_h,
                     *hi_h);
       }
       std::printf(" over %d rounds\n", opt.rounds);

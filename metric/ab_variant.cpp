@@ -1,0 +1,7 @@
+#include "metric/ab_variant.h"
+
+namespace meshdev::detail {
+
+int g_ab_variant = 0;
+
+}  // namespace meshdev::detail
