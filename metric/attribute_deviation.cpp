@@ -7,9 +7,11 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <type_traits>
 
 #include "metric/morton_order.h"
+#include "metric/simd2.h"
 #include "metric/texture_deviation.h"
 #include "metric/uv_index.h"
 
@@ -146,44 +148,141 @@ double raw_distance(const InlineGroup& g, const Triangle& ta, const std::array<d
   return std::sqrt(sum);
 }
 
-// Writes sample i's deviations of every inline group: from the reference's values at `bary_a`
-// of its face `ta` and the target's at `bary_b` of `tb` (one tie). The numbers of the general
-// path (interpolate, unit_normal, unit_normal_distance, the raw Euclidean distance), bit for
-// bit, without its per-sample dispatch on storage, dimension and form: torus100k -> 1m +2.8 %,
-// armadillo -> 5k +6.6 % (docs/performance.md §3). The normals' chord |n - m| is computed once
-// for both normal measures, and raw groups of 1 to 3 values take their unrolled distance: the two
-// together torus1m -> 100k +2.8 %, torus100k -> 10k +1.5 %, torus100k -> 1m +0.7 %
-// (chunk-interleaved, docs/performance.md §3). O(sum of dims + measures).
-void inline_deviations(const std::vector<InlineGroup>& groups, const Triangle& ta,
-                       const std::array<double, 3>& bary_a, const Triangle& tb,
-                       const std::array<double, 3>& bary_b, std::size_t i) {
+// A sample whose deviations the inline path computes: its face and barycentrics on the
+// reference, its one tie's on the target, and its index in the result.
+struct InlineSample {
+  const Triangle* ta;
+  const std::array<double, 3>* bary_a;
+  const Triangle* tb;
+  const std::array<double, 3>* bary_b;
+  std::size_t i;
+};
+
+// Writes sample x's deviations of inline group g: from the reference's values at its
+// barycentrics of its face and the target's at those of its tie's face. The numbers of the
+// general path (interpolate, unit_normal, unit_normal_distance, the raw Euclidean distance), bit
+// for bit, without its per-sample dispatch on storage, dimension and form: torus100k -> 1m
+// +2.8 %, armadillo -> 5k +6.6 % (docs/performance.md §3). The normals' chord |n - m| is computed
+// once for both normal measures, and raw groups of 1 to 3 values take their unrolled distance:
+// the two together torus1m -> 100k +2.8 %, torus100k -> 10k +1.5 %, torus100k -> 1m +0.7 %
+// (chunk-interleaved, docs/performance.md §3). The loop takes samples two at a time
+// (inline_deviations_pair); this is for an odd one out and for groups the pair leaves. O(dim +
+// measures).
+void group_deviations(const InlineGroup& g, const InlineSample& x) {
+  const Triangle &ta = *x.ta, &tb = *x.tb;
+  const std::array<double, 3>&bary_a = *x.bary_a, &bary_b = *x.bary_b;
+  if (g.unit_normals) {
+    const Vec3 na =
+        unit_normal({mix(g.reference, 3, ta, bary_a, 0), mix(g.reference, 3, ta, bary_a, 1),
+                     mix(g.reference, 3, ta, bary_a, 2)});
+    const Vec3 nb = unit_normal({mix(g.target, 3, tb, bary_b, 0), mix(g.target, 3, tb, bary_b, 1),
+                                 mix(g.target, 3, tb, bary_b, 2)});
+    const double chord = norm(na - nb);
+    for (std::size_t k = 0; k < g.columns.size(); ++k)
+      g.columns[k][x.i] = unit_normal_distance(g.kinds[k], chord, na, nb);
+    return;
+  }
+  double d;
+  switch (g.dim) {
+    case 1:
+      d = raw_distance<1>(g, ta, bary_a, tb, bary_b);
+      break;
+    case 2:
+      d = raw_distance<2>(g, ta, bary_a, tb, bary_b);
+      break;
+    case 3:
+      d = raw_distance<3>(g, ta, bary_a, tb, bary_b);
+      break;
+    default:
+      d = raw_distance<0>(g, ta, bary_a, tb, bary_b, g.dim);
+  }
+  for (double* column : g.columns) column[x.i] = d;
+}
+
+// mix for two samples at once, x's in lane 0 and y's in lane 1: barycentric_mix's operations in
+// its order on each lane. O(1).
+inline simd::D2 mix2(const double* values, int dim, const InlineSample& x, const InlineSample& y,
+                     bool target, int k) {
+  using simd::D2;
+  const std::size_t d = static_cast<std::size_t>(dim);
+  const Triangle &tx = target ? *x.tb : *x.ta, &ty = target ? *y.tb : *y.ta;
+  const std::array<double, 3>&bx = target ? *x.bary_b : *x.bary_a,
+                           &by = target ? *y.bary_b : *y.bary_a;
+  D2 r = D2::pair(bx[0], by[0]) * D2::pair(values[tx[0] * d + k], values[ty[0] * d + k]);
+  r = r + D2::pair(bx[1], by[1]) * D2::pair(values[tx[1] * d + k], values[ty[1] * d + k]);
+  return r + D2::pair(bx[2], by[2]) * D2::pair(values[tx[2] * d + k], values[ty[2] * d + k]);
+}
+
+// Two samples' 3-vectors, lane by lane, and dot2 as Vec3's dot: (x x' + y y') + z z'.
+struct Vec3x2 {
+  simd::D2 x, y, z;
+};
+inline simd::D2 dot2(const Vec3x2& a, const Vec3x2& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+// unit_normal on each lane: (1 / |n|) n where |n| > 0, else 0. O(1).
+inline Vec3x2 unit_normal2(const Vec3x2& n) {
+  const simd::D2 len = simd::sqrt(dot2(n, n));
+  const simd::M2 positive = simd::positive(len);
+  const simd::D2 inverse = simd::D2::splat(1.0) / len;
+  return {simd::keep(positive, inverse * n.x), simd::keep(positive, inverse * n.y),
+          simd::keep(positive, inverse * n.z)};
+}
+
+// group_deviations of samples x and y for every group, each lane computing one sample with its
+// operations in their order (metric/simd2.h: the same bits), the asin of the angle lane by lane.
+// Two samples share each instruction of the interpolation, normalisation and chords, and their
+// square roots and divisions run two at a time. With the target's values prefetched a batch
+// ahead (deviations_of), chunk-interleaved, 2 threads: torus100k -> 1m +6.7 %, torus1m -> 100k
+// +5.7 %, torus100k -> 10k +2.7 %, armadillo -> 5k +6.5 % (docs/performance.md §3). Groups of
+// raw values of more than 3 components go one sample at a time. O(sum of dims + measures).
+void inline_deviations_pair(const std::vector<InlineGroup>& groups, const InlineSample& x,
+                            const InlineSample& y) {
+  using simd::D2;
   for (const InlineGroup& g : groups) {
+    double lane[2];
     if (g.unit_normals) {
-      const Vec3 na =
-          unit_normal({mix(g.reference, 3, ta, bary_a, 0), mix(g.reference, 3, ta, bary_a, 1),
-                       mix(g.reference, 3, ta, bary_a, 2)});
-      const Vec3 nb = unit_normal({mix(g.target, 3, tb, bary_b, 0), mix(g.target, 3, tb, bary_b, 1),
-                                   mix(g.target, 3, tb, bary_b, 2)});
-      const double chord = norm(na - nb);
-      for (std::size_t k = 0; k < g.columns.size(); ++k)
-        g.columns[k][i] = unit_normal_distance(g.kinds[k], chord, na, nb);
+      const Vec3x2 na = unit_normal2(Vec3x2{mix2(g.reference, 3, x, y, false, 0),
+                                            mix2(g.reference, 3, x, y, false, 1),
+                                            mix2(g.reference, 3, x, y, false, 2)});
+      const Vec3x2 nb =
+          unit_normal2(Vec3x2{mix2(g.target, 3, x, y, true, 0), mix2(g.target, 3, x, y, true, 1),
+                              mix2(g.target, 3, x, y, true, 2)});
+      const Vec3x2 difference{na.x - nb.x, na.y - nb.y, na.z - nb.z};
+      const Vec3x2 sum{na.x + nb.x, na.y + nb.y, na.z + nb.z};
+      double chord[2], across[2];
+      simd::store(chord, simd::sqrt(dot2(difference, difference)));
+      simd::store(across, simd::sqrt(dot2(sum, sum)));
+      auto zero = [](const Vec3x2& n) {
+        return simd::zero(n.x) & simd::zero(n.y) & simd::zero(n.z);
+      };
+      const int either_zero = simd::bits(zero(na) | zero(nb));
+      for (std::size_t k = 0; k < g.columns.size(); ++k) {
+        const bool euclidean = g.kinds[k] == MeasureKind::kNormalEuclidean;
+        for (int l = 0; l < 2; ++l)
+          lane[l] = euclidean ? chord[l]
+                              : unit_normal_angle(chord[l], across[l], (either_zero >> l & 1) != 0);
+        g.columns[k][x.i] = lane[0];
+        g.columns[k][y.i] = lane[1];
+      }
       continue;
     }
-    double d;
-    switch (g.dim) {
-      case 1:
-        d = raw_distance<1>(g, ta, bary_a, tb, bary_b);
-        break;
-      case 2:
-        d = raw_distance<2>(g, ta, bary_a, tb, bary_b);
-        break;
-      case 3:
-        d = raw_distance<3>(g, ta, bary_a, tb, bary_b);
-        break;
-      default:
-        d = raw_distance<0>(g, ta, bary_a, tb, bary_b, g.dim);
+    if (g.dim > 3) {
+      group_deviations(g, x);
+      group_deviations(g, y);
+      continue;
     }
-    for (double* column : g.columns) column[i] = d;
+    D2 sum = D2::splat(0.0);  // raw_distance's sum of squares, in component order
+    for (int c = 0; c < g.dim; ++c) {
+      const D2 e = mix2(g.reference, g.dim, x, y, false, c) - mix2(g.target, g.dim, x, y, true, c);
+      sum = sum + e * e;
+    }
+    simd::store(lane, simd::sqrt(sum));
+    for (double* column : g.columns) {
+      column[x.i] = lane[0];
+      column[y.i] = lane[1];
+    }
   }
 }
 
@@ -345,6 +444,12 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     if (g.reference->storage == Storage::kPerVertex)
       reference_bytes += g.reference->values.size() * sizeof(double);
   const bool prefetch_reference = reference_bytes >= options.prefetch_bytes;
+  // And whether each batch prefetches the target's, at the one-tie answers' corners (below).
+  std::size_t target_bytes = 0;
+  for (const ChannelGroup& g : groups)
+    if (g.target->storage == Storage::kPerVertex)
+      target_bytes += g.target->values.size() * sizeof(double);
+  const bool prefetch_target = target_bytes >= options.prefetch_bytes;
 
   // The per-sample output arrays of raw storage (PerSample) are only allocated: each sample's
   // values are written once, below, for every measure (geometry, each channel group's, Cohen's,
@@ -418,6 +523,22 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
       for (std::size_t from = 0; from < count;) {
         const std::size_t to =
             from + index.find_batch(points.data() + from, hints.data() + from, count - from, batch);
+        // The target's per-vertex values at the corners of each one-tie answer's face, which
+        // the inline path reads below, prefetched for the whole batch first: samples sparse on a
+        // large target each land on a face of their own, whose values the search never read
+        // (torus100k -> 1m: 16 MB of normals and temperatures; part of the +6.7 % of
+        // inline_deviations_pair). Only for targets of at least prefetch_bytes, as the
+        // reference's above.
+        if (prefetch_target && !inline_path.empty())
+          for (std::size_t j = from; j < to; ++j) {
+            if (batch.tie_count(j - from) != 1) continue;
+            const Triangle& corners = tgt.faces[batch.ties_begin(j - from)->face];
+            for (const InlineGroup& g : inline_path)
+              for (int c = 0; c < 3; ++c)
+                __builtin_prefetch(g.target + corners[c] * static_cast<std::size_t>(g.dim));
+          }
+        // Samples for the inline path go two at a time; the first of a pair waits here.
+        std::optional<InlineSample> held;
         for (std::size_t j = from; j < to; ++j) {
           const std::size_t i = sample_at(begin + order[j]);
           const Sample& s = chunk_samples[order[j]];
@@ -428,8 +549,14 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
           out.tie_count[i] = static_cast<std::uint32_t>(ties.size());
           out.values[0][i] = batch.distance[j - from];
           if (!inline_path.empty() && s.face != kNoFace && ties.size() == 1) {
-            inline_deviations(inline_path, ref.faces[s.face], s.bary, tgt.faces[ties[0].face],
-                              ties[0].bary, i);
+            const InlineSample sample{&ref.faces[s.face], &s.bary, &tgt.faces[ties[0].face],
+                                      &ties[0].bary, i};
+            if (held) {
+              inline_deviations_pair(inline_path, *held, sample);
+              held.reset();
+            } else {
+              held = sample;
+            }
             continue;
           }
 
@@ -506,6 +633,8 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
             for (std::size_t k = 0; k < texture.size(); ++k) out.values[texture[k]][i] = best[k];
           }
         }
+        if (held)  // the batch's odd one out (its tie lives in `batch`: before the next one)
+          for (const InlineGroup& g : inline_path) group_deviations(g, *held);
         from = to;
       }
     }

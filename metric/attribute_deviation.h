@@ -20,9 +20,10 @@ struct DeviationOptions {
   // per-sample output is kept; the statistics need only nearest_feature.
   bool keep_nearest = true;
   // References whose faces and per-vertex channels take at least this many bytes get those
-  // channels' values prefetched a batch of queries ahead: several times the 1-2 MB of a core's
-  // own cache, below which the values are mostly in cache already. Speed only: the results do
-  // not depend on it (0: always).
+  // channels' values prefetched a batch of queries ahead, and targets whose per-vertex channels
+  // do get theirs prefetched at each batch's answers before they are read: several times the
+  // 1-2 MB of a core's own cache, below which the values are mostly in cache already. Speed
+  // only: the results do not depend on it (0: always).
   std::size_t prefetch_bytes = std::size_t{8} << 20;
 };
 

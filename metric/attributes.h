@@ -154,20 +154,25 @@ inline Vec3 unit_normal(const Vec3& n) {
 inline bool is_unit_normal_measure(MeasureKind kind) {
   return kind == MeasureKind::kNormalEuclidean || kind == MeasureKind::kNormalAngle;
 }
-// The angle in degrees between unit normals n and m (from unit_normal) whose chord |n - m| is
-// `chord`; 90 if either normal is 0 (undefined: no information). From the chords of unit
-// vectors: 2 asin(|n - m| / 2) up to 90 degrees, pi - 2 asin(|n + m| / 2) beyond, each well
-// conditioned where it is used (Kahan, "How futile are mindless assessments of roundoff", 2006,
-// sec. 12); as accurate as atan2(|n x m|, n.m) and cheaper in glibc (torus100k -> 10k, 1 thread:
-// 3.74 -> 4.16 M samples/s, docs/performance.md §3). Taking the chord lets a caller that also
-// reports |n - m| compute it once. O(1).
-inline double unit_normal_angle(double chord, const Vec3& n, const Vec3& m) {
+// The angle in degrees between unit normals n and m (from unit_normal) from their chords
+// `chord` = |n - m| and `across` = |n + m|; 90 if either normal is 0 (`either_zero`: undefined,
+// no information). 2 asin(|n - m| / 2) up to 90 degrees, pi - 2 asin(|n + m| / 2) beyond, each
+// well conditioned where it is used (Kahan, "How futile are mindless assessments of roundoff",
+// 2006, sec. 12); as accurate as atan2(|n x m|, n.m) and cheaper in glibc (torus100k -> 10k,
+// 1 thread: 3.74 -> 4.16 M samples/s, docs/performance.md §3). Taking the chords lets a caller
+// that also reports |n - m| compute it once, and one that computes them two samples at a time
+// (the deviation loop) share this. O(1).
+inline double unit_normal_angle(double chord, double across, bool either_zero) {
   constexpr double kPi = 3.14159265358979323846;
-  if (n == Vec3{} || m == Vec3{}) return 90.0;
-  const double across = norm(n + m);  // unit n, m: the chord is at most 2
+  if (either_zero) return 90.0;
   const double radians =
       chord <= across ? 2.0 * std::asin(0.5 * chord) : kPi - 2.0 * std::asin(0.5 * across);
   return radians * (180.0 / kPi);
+}
+// The same given the normals themselves and their chord |n - m|. O(1).
+inline double unit_normal_angle(double chord, const Vec3& n, const Vec3& m) {
+  if (n == Vec3{} || m == Vec3{}) return unit_normal_angle(chord, 0.0, true);
+  return unit_normal_angle(chord, norm(n + m), false);
 }
 // form_distance of two unit normals (from unit_normal) under a kind with is_unit_normal_measure,
 // given their chord |n - m| (so a caller with both normal measures computes it once), inline for

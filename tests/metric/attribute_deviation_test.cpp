@@ -99,14 +99,17 @@ TEST(AttributeDeviation, EqualsThePerTieMinimumOfAttributeDistanceOverTheBruteFo
 // the per-tie minimum of attribute_distance over the brute-force ties (the general path's
 // oracle above), on samples with one tie and with several.
 TEST(AttributeDeviation, InlinePerVertexChannelsEqualTheBruteForceOracle) {
-  auto per_vertex = [](TriMesh m, std::uint64_t seed) {
+  // Normals of zero length at every seventh vertex and in a band of x (`zero_band`: whole faces
+  // there interpolate to 0, on A's side in one band and on B's in another).
+  auto per_vertex = [](TriMesh m, std::uint64_t seed, auto zero_band) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     AttributeChannel& n = m.add_channel("normal", AttributeKind::kNormal, Storage::kPerVertex, 3);
     for (std::size_t v = 0; v < m.positions.size(); ++v) {
-      n.values[3 * v] = v % 7 == 0 ? 0.0 : u(rng) - 0.5;
-      n.values[3 * v + 1] = v % 7 == 0 ? 0.0 : u(rng) - 0.5;
-      n.values[3 * v + 2] = v % 7 == 0 ? 0.0 : (v % 3 == 0 ? -1.0 : 1.0) * (0.2 + u(rng));
+      const bool zero = v % 7 == 0 || zero_band(m.positions[v].x);
+      n.values[3 * v] = zero ? 0.0 : u(rng) - 0.5;
+      n.values[3 * v + 1] = zero ? 0.0 : u(rng) - 0.5;
+      n.values[3 * v + 2] = zero ? 0.0 : (v % 3 == 0 ? -1.0 : 1.0) * (0.2 + u(rng));
     }
     AttributeChannel& t =
         m.add_channel("temperature", AttributeKind::kScalar, Storage::kPerVertex, 1);
@@ -122,8 +125,9 @@ TEST(AttributeDeviation, InlinePerVertexChannelsEqualTheBruteForceOracle) {
     }
     return m;
   };
-  const TriMesh a = per_vertex(test::grid(6, 1.0, 0.1), 5);  // vertices over B's: ties
-  const TriMesh b = per_vertex(test::grid(6, 1.0, 0.0), 6);
+  const TriMesh a =  // vertices over B's: ties
+      per_vertex(test::grid(6, 1.0, 0.1), 5, [](double x) { return x < 0.2; });
+  const TriMesh b = per_vertex(test::grid(6, 1.0, 0.0), 6, [](double x) { return x > 0.8; });
   const AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
   // geometry, normal x2, temperature, texcoord, stress3, stress4
   ASSERT_EQ(plan.measures.size(), 7u);
@@ -133,35 +137,46 @@ TEST(AttributeDeviation, InlinePerVertexChannelsEqualTheBruteForceOracle) {
   const SampleSet samples = sample_surface(a, so, 1.0);  // A's vertices (ties) and faces
   const auto bvh = make_nearest_point_index(b, IndexKind::kBvh);
   const auto brute = make_nearest_point_index(b, IndexKind::kBruteForce);
-  DeviationOptions options;
-  options.threads = 2;
-  const SampleDeviations d =
-      compute_deviations(samples, plan.a, plan.b, *bvh, plan.measures, options);
-  std::vector<SurfaceHit> ties;
-  std::size_t single = 0, several = 0, angles_beyond_90 = 0;
-  double fa[16], fb[16];
-  for (std::size_t i = 0; i < samples.samples.size(); ++i) {
-    const Sample& s = samples.samples[i];
-    ASSERT_EQ(d.values[0][i], brute->find(s.point, sample_hint(a, s), ties)) << "sample " << i;
-    ASSERT_EQ(d.tie_count[i], ties.size()) << "sample " << i;
-    (ties.size() == 1 ? single : several) += 1;
-    for (std::size_t m = 1; m < plan.measures.size(); ++m) {
-      const Measure& measure = plan.measures[m];
-      const AttributeChannel& ca = *plan.a.channel(measure.channel);
-      const AttributeChannel& cb = *plan.b.channel(measure.channel);
-      interpolate(ca, a, s.face, s.bary, s.vertex, fa);
-      double best = std::numeric_limits<double>::infinity();
-      for (const SurfaceHit& h : ties) {
-        interpolate(cb, b, h.face, h.bary, kNoFace, fb);
-        best = std::min(best, attribute_distance(measure.kind, fa, fb, ca.dim));
+  // The target's values prefetched (prefetch_bytes 0) or not: the same results either way.
+  for (const std::size_t prefetch_bytes : {DeviationOptions{}.prefetch_bytes, std::size_t{0}}) {
+    SCOPED_TRACE("prefetch_bytes " + std::to_string(prefetch_bytes));
+    DeviationOptions options;
+    options.threads = 2;
+    options.prefetch_bytes = prefetch_bytes;
+    const SampleDeviations d =
+        compute_deviations(samples, plan.a, plan.b, *bvh, plan.measures, options);
+    std::vector<SurfaceHit> ties;
+    std::size_t single = 0, several = 0, angles_beyond_90 = 0, zero_a = 0, zero_b = 0;
+    double fa[16], fb[16];
+    for (std::size_t i = 0; i < samples.samples.size(); ++i) {
+      const Sample& s = samples.samples[i];
+      ASSERT_EQ(d.values[0][i], brute->find(s.point, sample_hint(a, s), ties)) << "sample " << i;
+      ASSERT_EQ(d.tie_count[i], ties.size()) << "sample " << i;
+      (ties.size() == 1 ? single : several) += 1;
+      for (std::size_t m = 1; m < plan.measures.size(); ++m) {
+        const Measure& measure = plan.measures[m];
+        const AttributeChannel& ca = *plan.a.channel(measure.channel);
+        const AttributeChannel& cb = *plan.b.channel(measure.channel);
+        interpolate(ca, a, s.face, s.bary, s.vertex, fa);
+        double best = std::numeric_limits<double>::infinity();
+        for (const SurfaceHit& h : ties) {
+          interpolate(cb, b, h.face, h.bary, kNoFace, fb);
+          best = std::min(best, attribute_distance(measure.kind, fa, fb, ca.dim));
+          if (measure.kind == MeasureKind::kNormalAngle && ties.size() == 1) {
+            zero_a += fa[0] == 0.0 && fa[1] == 0.0 && fa[2] == 0.0;
+            zero_b += fb[0] == 0.0 && fb[1] == 0.0 && fb[2] == 0.0;
+          }
+        }
+        ASSERT_EQ(d.values[m][i], best) << measure.name << ", sample " << i;
+        angles_beyond_90 += measure.kind == MeasureKind::kNormalAngle && best > 90.0;
       }
-      ASSERT_EQ(d.values[m][i], best) << measure.name << ", sample " << i;
-      angles_beyond_90 += measure.kind == MeasureKind::kNormalAngle && best > 90.0;
     }
+    EXPECT_GT(single, 2000u);           // the inline path (samples in pairs and alone) ...
+    EXPECT_GT(several, 10u);            // ... and the general one
+    EXPECT_GT(angles_beyond_90, 100u);  // both branches of the angle
+    EXPECT_GT(zero_a, 100u);            // zero normals on the inline path, either side
+    EXPECT_GT(zero_b, 100u);
   }
-  EXPECT_GT(single, 2000u);           // the inline path ...
-  EXPECT_GT(several, 10u);            // ... and the general one
-  EXPECT_GT(angles_beyond_90, 100u);  // both branches of the angle
 }
 
 // Monte Carlo samples made a chunk at a time as they are queried give the results of the stored
