@@ -91,6 +91,15 @@ constexpr std::size_t kDenseQueries = 3;
 // 2.26 / 2.34 M queries/s on one thread; 3 was as good or best on the other pairs measured.)
 constexpr double kGuessFactor = 3.0;
 constexpr std::size_t kGuessMisses = 4;
+// "The largest distance of the answers before it" remembers earlier packets too, fading by this
+// factor per packet: the largest of the last packet's distances and kGuessDecay times the value
+// before. Samples along a Morton curve pass from where A and B are close to where they are far
+// and back (torus100k on torus1m: 0 at A's vertices, the most at its faces' centres); a guess
+// from the last packet alone then fell short for queries farther than it (about 1.8 % of the
+// queries there, each then searched from the root). Chunk-interleaved, 2 threads, 8-10 runs:
+// torus100k -> 1m +3.4 % (decays 0.5 / 0.8 / 0.9 / 0.95: +2.0 / +3.4 / +2.2 / +2.2 %), the
+// other five pairs of docs/performance.md -0.5 % to +1.6 % (docs/performance.md §3).
+constexpr double kGuessDecay = 0.8;
 
 // A float box; extending by float coordinates is exact.
 struct Box {
@@ -1115,7 +1124,9 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
   }
   scratch.seen_face = scratch.setup_face = kNoFace;
   std::uint32_t previous = kNoFace;
-  double recent = -1.0;  // the largest distance of the last query or packet answered (-1: none)
+  // The largest distance of the last query or packet answered, faded in with the earlier ones
+  // (kGuessDecay; -1: none).
+  double recent = -1.0;
   bool guess_ok = true;  // false: the last packet's guess failed for too many of its queries
   auto single = [&](std::size_t i) {
     QueryHint hint = hints != nullptr ? hints[i] : QueryHint{};
@@ -1180,8 +1191,10 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     }
     if (answered > 0) {
       previous = out.hits[out.first[i + answered - 1]].face;
-      recent = *std::max_element(out.distance.begin() + static_cast<std::ptrdiff_t>(i),
-                                 out.distance.begin() + static_cast<std::ptrdiff_t>(i + answered));
+      const double largest =
+          *std::max_element(out.distance.begin() + static_cast<std::ptrdiff_t>(i),
+                            out.distance.begin() + static_cast<std::ptrdiff_t>(i + answered));
+      recent = recent >= 0.0 ? std::max(largest, kGuessDecay * recent) : largest;
       out.packet_queries += answered;
       i += answered;
     } else {

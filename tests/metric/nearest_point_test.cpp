@@ -532,16 +532,17 @@ TEST(NearestPoint, BvhSparsePacketsOfFacesEqualBruteForce) {
 
 // Block packets guess their queries' distances from the answers before them and search again in
 // full where a query is farther than guessed (TriangleBvh::find_batch). Here the distances jump:
-// runs of queries on the surface (distance about 0) with one query in 7 lifted off it by a
-// third of an edge along the radius, so guesses made after a run on the surface fail, and the
-// packets after too many failures answer their centre in full instead. Every answer must still
-// be the oracle's, in both kinds of packet.
+// runs of queries on the surface (distance about 0) with one query in 7 lifted off it along the
+// radius by 0.5, 2 or 8 % in turn, so guesses made after a run on the surface or after a lower
+// lift fail (the guess remembers earlier packets, fading: kGuessDecay; lifts of 3-9 % failed too
+// rarely with it), and the packets after too many failures answer their centre in full instead.
+// Every answer must still be the oracle's, in both kinds of packet.
 TEST(NearestPoint, BvhBlockPacketsWhoseGuessFailsEqualBruteForce) {
   const TriMesh sphere = test::icosphere(3);
   for (bool hinted : {false, true}) {
     QueryStream qs = sparse_queries(sphere, 47, 0.0, hinted, 0.0, kSparseStride);
     for (std::size_t k = 3; k < qs.points.size(); k += 7) {
-      qs.points[k] = (1.0 + 0.03 * (1.0 + static_cast<double>(k % 3))) * qs.points[k];
+      qs.points[k] = (1.0 + 0.005 * std::pow(4.0, static_cast<double>(k % 3))) * qs.points[k];
       qs.hints[k] = QueryHint{};  // no longer on its source triangle
     }
     const std::string what = hinted ? "hinted" : "plain";
