@@ -234,9 +234,11 @@ inline Vec3x2 unit_normal2(const Vec3x2& n) {
 // operations in their order (metric/simd2.h: the same bits), the asin of the angle lane by lane.
 // Two samples share each instruction of the interpolation, normalisation and chords, and their
 // square roots and divisions run two at a time. With the target's values prefetched a batch
-// ahead (deviations_of), chunk-interleaved, 2 threads: torus100k -> 1m +6.7 %, torus1m -> 100k
-// +5.7 %, torus100k -> 10k +2.7 %, armadillo -> 5k +6.5 % (docs/performance.md §3). Groups of
-// raw values of more than 3 components go one sample at a time. O(sum of dims + measures).
+// ahead (deviations_of), against the scalar path one sample at a time, chunk-interleaved on
+// 2 threads: torus100k -> 1m +2.1 / +3.4 / +3.8 %, torus1m -> 100k +4.1 %, armadillo -> 5k
+// +5.4 %, buildings -> 40k +4.6 %, bunny00 -> 7k +2.9 %, torus100k -> 10k -0.4 / +1.4 %
+// (docs/performance.md §3). Groups of raw values of more than 3 components go one sample at a
+// time. O(sum of dims + measures).
 void inline_deviations_pair(const std::vector<InlineGroup>& groups, const InlineSample& x,
                             const InlineSample& y) {
   using simd::D2;
@@ -526,9 +528,9 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
         // The target's per-vertex values at the corners of each one-tie answer's face, which
         // the inline path reads below, prefetched for the whole batch first: samples sparse on a
         // large target each land on a face of their own, whose values the search never read
-        // (torus100k -> 1m: 16 MB of normals and temperatures; part of the +6.7 % of
-        // inline_deviations_pair). Only for targets of at least prefetch_bytes, as the
-        // reference's above.
+        // (torus100k -> 1m: 16 MB of normals and temperatures; with the scalar path, batched,
+        // +3.0 % there, docs/performance.md §3). Only for targets of at least prefetch_bytes, as
+        // the reference's above.
         if (prefetch_target && !inline_path.empty())
           for (std::size_t j = from; j < to; ++j) {
             if (batch.tie_count(j - from) != 1) continue;

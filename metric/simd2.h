@@ -37,9 +37,10 @@ inline D2 operator*(D2 a, D2 b) {
 inline D2 operator/(D2 a, D2 b) {
   return {_mm_div_pd(a.v, b.v)};
 }
+// Correctly rounded, as std::sqrt.
 inline D2 sqrt(D2 a) {
   return {_mm_sqrt_pd(a.v)};
-}  // correctly rounded
+}
 // Lanes where a > 0 (false for NaN), where a == 0 (true for -0).
 inline M2 positive(D2 a) {
   return {_mm_cmpgt_pd(a.v, _mm_setzero_pd())};
