@@ -261,10 +261,9 @@ void inline_deviations_pair(const std::vector<InlineGroup>& groups, const Inline
       };
       const int either_zero = simd::bits(zero(na) | zero(nb));
       for (std::size_t k = 0; k < g.columns.size(); ++k) {
-        const bool euclidean = g.kinds[k] == MeasureKind::kNormalEuclidean;
         for (int l = 0; l < 2; ++l)
-          lane[l] = euclidean ? chord[l]
-                              : unit_normal_angle(chord[l], across[l], (either_zero >> l & 1) != 0);
+          lane[l] =
+              unit_normal_distance(g.kinds[k], chord[l], across[l], (either_zero >> l & 1) != 0);
         g.columns[k][x.i] = lane[0];
         g.columns[k][y.i] = lane[1];
       }

@@ -180,6 +180,13 @@ inline double unit_normal_angle(double chord, const Vec3& n, const Vec3& m) {
 inline double unit_normal_distance(MeasureKind kind, double chord, const Vec3& n, const Vec3& m) {
   return kind == MeasureKind::kNormalEuclidean ? chord : unit_normal_angle(chord, n, m);
 }
+// The same from both chords |n - m| and |n + m| and whether either normal is 0 (the deviation
+// loop's two-sample path, which computes them for two samples at once). O(1).
+inline double unit_normal_distance(MeasureKind kind, double chord, double across,
+                                   bool either_zero) {
+  return kind == MeasureKind::kNormalEuclidean ? chord
+                                               : unit_normal_angle(chord, across, either_zero);
+}
 // The same with the chord computed here (form_distance calls it). O(1).
 inline double unit_normal_distance(MeasureKind kind, const Vec3& n, const Vec3& m) {
   return unit_normal_distance(kind, norm(n - m), n, m);
