@@ -7,10 +7,11 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <optional>
 #include <type_traits>
 
+#include "metric/channel_chords.h"
 #include "metric/morton_order.h"
+#include "metric/plane_bounds.h"
 #include "metric/simd2.h"
 #include "metric/texture_deviation.h"
 #include "metric/uv_index.h"
@@ -287,6 +288,34 @@ void inline_deviations_pair(const std::vector<InlineGroup>& groups, const Inline
   }
 }
 
+// group_deviations of four samples for every group: the channels compared in the four lanes of
+// channel_chords_x4 (the same bits), the angles' asin lane by lane here. `channels`: the groups
+// as ChordChannels, channels[j] for groups[j]. Groups of raw values of more than 3 components go
+// one sample at a time. Precondition: the CPU runs AVX2 (simd_level() != kBaseline). O(sum of
+// dims + measures).
+void inline_deviations_x4(const std::vector<InlineGroup>& groups,
+                          const std::vector<detail::ChordChannel>& channels,
+                          std::vector<detail::ChannelChords>& chords, const InlineSample s[4]) {
+  detail::ChordSample lanes[4];
+  for (int l = 0; l < 4; ++l)
+    lanes[l] = {s[l].ta->data(), s[l].bary_a->data(), s[l].tb->data(), s[l].bary_b->data()};
+  detail::channel_chords_x4(channels.data(), channels.size(), lanes, chords.data());
+  for (std::size_t j = 0; j < groups.size(); ++j) {
+    const InlineGroup& g = groups[j];
+    const detail::ChannelChords& c = chords[j];
+    if (!g.unit_normals && g.dim > 3) {
+      for (int l = 0; l < 4; ++l) group_deviations(g, s[l]);
+      continue;
+    }
+    for (std::size_t k = 0; k < g.columns.size(); ++k)
+      for (int l = 0; l < 4; ++l)
+        g.columns[k][s[l].i] = g.unit_normals
+                                   ? unit_normal_distance(g.kinds[k], c.chord[l], c.across[l],
+                                                          (c.either_zero >> l & 1) != 0)
+                                   : c.chord[l];
+  }
+}
+
 // One query's ties inside a BatchHits.
 struct TieRange {
   const SurfaceHit* first;
@@ -451,6 +480,12 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     if (g.target->storage == Storage::kPerVertex)
       target_bytes += g.target->values.size() * sizeof(double);
   const bool prefetch_target = target_bytes >= options.prefetch_bytes;
+  // The inline path's samples per step: four in AVX lanes where the CPU runs them, else two.
+#if defined(MESHDEV_X86_KERNELS)
+  const int lanes = simd_level() != SimdLevel::kBaseline ? 4 : 2;
+#else
+  const int lanes = 2;
+#endif
 
   // The per-sample output arrays of raw storage (PerSample) are only allocated: each sample's
   // values are written once, below, for every measure (geometry, each channel group's, Cohen's,
@@ -468,6 +503,9 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   const std::vector<InlineGroup> inline_path = cohen.empty() && texture.empty()
                                                    ? inline_groups(groups, out.values)
                                                    : std::vector<InlineGroup>{};
+  std::vector<detail::ChordChannel> chord_channels;  // the same, for channel_chords_x4
+  for (const InlineGroup& g : inline_path)
+    chord_channels.push_back({g.reference, g.target, g.dim, g.unit_normals});
 #pragma omp parallel num_threads(threads)
   {
     // `nearest` is value-initialised, by one thread of the team while the others wait (the
@@ -481,6 +519,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     std::vector<std::uint64_t> keys;
     std::vector<double> best;
     std::vector<UvHit> uv_hits;
+    std::vector<detail::ChannelChords> chords(chord_channels.size());
     std::vector<Sample> scratch;          // the chunk's samples, where they are not read in place
     double fa[16], fb[16];                // channel values at p and at p'
     double form_a[3][16], form_b[3][16];  // ... normalised or in CIELAB
@@ -538,8 +577,9 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
               for (int c = 0; c < 3; ++c)
                 __builtin_prefetch(g.target + corners[c] * static_cast<std::size_t>(g.dim));
           }
-        // Samples for the inline path go two at a time; the first of a pair waits here.
-        std::optional<InlineSample> held;
+        // Samples for the inline path go four (or two) at a time; they wait here.
+        InlineSample held[4];
+        int held_count = 0;
         for (std::size_t j = from; j < to; ++j) {
           const std::size_t i = sample_at(begin + order[j]);
           const Sample& s = chunk_samples[order[j]];
@@ -552,11 +592,13 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
           if (!inline_path.empty() && s.face != kNoFace && ties.size() == 1) {
             const InlineSample sample{&ref.faces[s.face], &s.bary, &tgt.faces[ties[0].face],
                                       &ties[0].bary, i};
-            if (held) {
-              inline_deviations_pair(inline_path, *held, sample);
-              held.reset();
-            } else {
-              held = sample;
+            held[held_count++] = sample;
+            if (held_count == lanes) {
+              if (lanes == 4)
+                inline_deviations_x4(inline_path, chord_channels, chords, held);
+              else
+                inline_deviations_pair(inline_path, held[0], held[1]);
+              held_count = 0;
             }
             continue;
           }
@@ -634,8 +676,12 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
             for (std::size_t k = 0; k < texture.size(); ++k) out.values[texture[k]][i] = best[k];
           }
         }
-        if (held)  // the batch's odd one out (its tie lives in `batch`: before the next one)
-          for (const InlineGroup& g : inline_path) group_deviations(g, *held);
+        // The batch's last ones (their ties live in `batch`: before the next one).
+        int left = 0;
+        for (; left + 2 <= held_count; left += 2)
+          inline_deviations_pair(inline_path, held[left], held[left + 1]);
+        if (left < held_count)
+          for (const InlineGroup& g : inline_path) group_deviations(g, held[left]);
         from = to;
       }
     }

@@ -171,7 +171,7 @@ TEST(AttributeDeviation, InlinePerVertexChannelsEqualTheBruteForceOracle) {
         angles_beyond_90 += measure.kind == MeasureKind::kNormalAngle && best > 90.0;
       }
     }
-    EXPECT_GT(single, 2000u);           // the inline path (samples in pairs and alone) ...
+    EXPECT_GT(single, 2000u);           // the inline path (samples 4, 2 or 1 at a time) ...
     EXPECT_GT(several, 10u);            // ... and the general one
     EXPECT_GT(angles_beyond_90, 100u);  // both branches of the angle
     EXPECT_GT(zero_a, 100u);            // zero normals on the inline path, either side
