@@ -5,8 +5,8 @@
 // unit_normal, the chords of unit_normal_distance, the raw Euclidean distance), and IEEE add,
 // subtract, multiply, divide and square root are correctly rounded at any width, so each lane's
 // result is bit for bit the one-sample result. Compiled for AVX2 in its own translation unit
-// (without FMA and with -ffp-contract=off: no fused multiply-add may change a rounding) and
-// entered only where simd_level() (metric/plane_bounds.h) is not kBaseline.
+// (without FMA, and the library's -ffp-contract=off: no fused multiply-add may change a rounding)
+// and entered only where simd_level() (metric/plane_bounds.h) is not kBaseline.
 #include <cstddef>
 #include <cstdint>
 
