@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "metric/plane_bounds.h"
+
 namespace meshdev {
 
 MortonGrid::MortonGrid(const BoundingBox& box) : min_(box.min) {
@@ -27,6 +29,31 @@ bool stable_bucket_order(const std::uint32_t* bucket, std::size_t n,
   return true;
 }
 
+namespace detail {
+
+MortonRun morton_codes(const MortonGrid& grid, const Vec3* points, std::size_t n,
+                       std::uint64_t* codes) {
+  MortonRun run;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint64_t code = grid.code(points[i]);
+    codes[i] = code;
+    run.descents += i > 0 && code < codes[i - 1];
+    run.least = std::min(run.least, code);
+    run.most = std::max(run.most, code);
+  }
+  return run;
+}
+
+#if !defined(MESHDEV_X86_KERNELS)
+MortonRun morton_codes_avx2(const Vec3*, std::size_t, const double[3], double, std::uint32_t,
+                            std::uint64_t*) {
+  assert(false && "no AVX2 kernels in this build");
+  return {};
+}
+#endif
+
+}  // namespace detail
+
 void morton_order(const Vec3* points, std::size_t n, const BoundingBox& box,
                   std::vector<std::uint32_t>& order, std::vector<std::uint64_t>& keys) {
   assert(n < (std::size_t{1} << 32));
@@ -35,15 +62,19 @@ void morton_order(const Vec3* points, std::size_t n, const BoundingBox& box,
   const MortonGrid grid(box);
   if (n < 3 || !grid.valid()) return;
   keys.resize(2 * n);  // the codes, then the radix sort's second buffer
-  std::uint64_t least = ~std::uint64_t{0}, most = 0;
-  std::size_t descents = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint64_t code = grid.code(points[i]);
-    keys[i] = code;
-    descents += i > 0 && code < keys[i - 1];
-    least = std::min(least, code);
-    most = std::max(most, code);
-  }
+#if defined(MESHDEV_X86_KERNELS)
+  static const bool avx2 = simd_level() != SimdLevel::kBaseline;
+#else
+  constexpr bool avx2 = false;
+#endif
+  const Vec3& o = grid.origin();
+  const double origin[3] = {o.x, o.y, o.z};
+  const detail::MortonRun run =
+      avx2 ? detail::morton_codes_avx2(points, n, origin, grid.cells_per_unit(),
+                                       MortonGrid::max_cell(), keys.data())
+           : detail::morton_codes(grid, points, n, keys.data());
+  const std::size_t descents = run.descents;
+  const std::uint64_t least = run.least, most = run.most;
   if (descents == 0) return;
   // Every code shares the bits above the highest one in which the least and the most differ;
   // sort by the kMortonSortBits bits from that one down, with the point's index in the low word.

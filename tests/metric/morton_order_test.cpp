@@ -7,6 +7,9 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <string>
+
+#include "metric/plane_bounds.h"
 
 namespace meshdev {
 namespace {
@@ -60,6 +63,53 @@ TEST(MortonOrder, EqualsTheBitByBitReferenceOnRandomClouds) {
     wide.extend({1e3, 1e3, 1e3});
     morton_order(p.data(), n, wide, order, keys);
     EXPECT_EQ(order, reference_order(p, wide)) << n;
+  }
+}
+
+// The AVX2 codes against the one-point twin (MortonGrid::code through its table), bit for bit,
+// with the run's descents and extremes: points inside and outside the box, on its faces, NaN,
+// infinite and -0 coordinates, every length from 0 to 9 (the tails of one to three) and longer
+// runs, sorted and not.
+TEST(MortonOrder, Avx2CodesEqualTheOnePointCodes) {
+  if (simd_level() == SimdLevel::kBaseline)
+    GTEST_SKIP() << "the CPU (or MESHDEV_SIMD=baseline) has no AVX2: the kernel is never entered";
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-0.5, 1.5);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double special[] = {nan, inf, -inf, -0.0, 0.0, 1.0, 1e300, -1e300, 0.999999999};
+  BoundingBox box;
+  box.extend({0, 0, 0});
+  box.extend({1, 2, 0.5});
+  const MortonGrid grid(box);
+  const double origin[3] = {grid.origin().x, grid.origin().y, grid.origin().z};
+  std::vector<std::uint64_t> simd, twin;
+  for (std::size_t n : {0u, 1u, 2u, 3u, 4u, 5u, 6u, 7u, 8u, 9u, 1000u, 4099u}) {
+    for (const bool sorted : {false, true}) {
+      std::vector<Vec3> p(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        for (int k = 0; k < 3; ++k) p[i][k] = u(rng);
+        if (i % 7 == 3) p[i][static_cast<int>(i % 3)] = special[(i / 7) % std::size(special)];
+      }
+      if (sorted)
+        std::sort(p.begin(), p.end(),
+                  [&](const Vec3& a, const Vec3& b) { return grid.code(a) < grid.code(b); });
+      simd.assign(n, 0);
+      twin.assign(n, 1);
+      const detail::MortonRun a = detail::morton_codes_avx2(
+          p.data(), n, origin, grid.cells_per_unit(), MortonGrid::max_cell(), simd.data());
+      const detail::MortonRun b = detail::morton_codes(grid, p.data(), n, twin.data());
+      SCOPED_TRACE("n " + std::to_string(n) + (sorted ? ", sorted" : ""));
+      EXPECT_EQ(simd, twin);
+      EXPECT_EQ(a.descents, b.descents);
+      EXPECT_EQ(a.least, b.least);
+      EXPECT_EQ(a.most, b.most);
+      if (sorted) {
+        EXPECT_EQ(a.descents, 0u);
+      } else if (n >= 9) {
+        EXPECT_GT(a.descents, 0u);
+      }
+    }
   }
 }
 
