@@ -1,8 +1,8 @@
 // channel_chords_x4 in AVX lanes. This translation unit alone is compiled with -mavx2 (and, as
 // the whole library, -ffp-contract=off; metric/CMakeLists.txt) and is entered only after the
-// caller checked the CPU
-// (simd_level()), so it uses intrinsics and plain code only: no inline function shared with
-// other translation units, whose AVX copy the linker could pick for everyone.
+// caller checked the CPU (simd_level()), so it uses intrinsics and plain code only: no inline
+// function shared with other translation units, whose AVX copy the linker could pick for
+// everyone.
 #include <immintrin.h>
 
 #include "metric/channel_chords.h"

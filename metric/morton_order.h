@@ -48,12 +48,12 @@ class MortonGrid {
   explicit MortonGrid(const BoundingBox& box);
   // False for an empty or non-finite box (or a single point): every point is then in cell 0.
   bool valid() const { return scale_ > 0.0; }
-  // The Morton code of p's cell, x-y-z interleaved (x in the lowest bit); points outside the box
-  // (or NaN) are clamped to it. O(1).
   // The grid's corner, cells per unit length and largest cell index (code's arithmetic).
   const Vec3& origin() const { return min_; }
   double cells_per_unit() const { return scale_; }
   static constexpr std::uint32_t max_cell() { return kMaxCell; }
+  // The Morton code of p's cell, x-y-z interleaved (x in the lowest bit); points outside the box
+  // (or NaN) are clamped to it. O(1).
   std::uint64_t code(const Vec3& p) const {
     return spread21(cell(p.x, min_.x)) | spread21(cell(p.y, min_.y)) << 1 |
            spread21(cell(p.z, min_.z)) << 2;
@@ -110,17 +110,17 @@ MortonRun morton_codes(const MortonGrid& grid, const Vec3* points, std::size_t n
 // samples already in order (a run cut from a sorted set), chunk-interleaved, 2 threads, three
 // runs: torus100k -> 10k +1.3 / +2.8 / +1.4 %, armadillo +1.5 / +1.8 / +1.8 %, torus100k -> 1m
 // +1.6 / +1.9 / +0.3 %, torus1m -> 100k +1.6 / +0.9 / +1.3 % (docs/performance.md §3).
-// Precondition: the CPU runs AVX2
-// (simd_level() != kBaseline, metric/plane_bounds.h); builds without the x86 kernels only
-// assert. O(n).
+// Precondition: the CPU runs AVX2 (simd_level() != kBaseline, metric/plane_bounds.h); builds
+// without the x86 kernels only assert. O(n).
 MortonRun morton_codes_avx2(const Vec3* points, std::size_t n, const double origin[3], double scale,
                             std::uint32_t max_cell, std::uint64_t* codes);
 }  // namespace detail
 
 // Writes to `order` the permutation of [0, n) that visits points[0..n) in Morton order of their
 // cells in `box`; `keys` is scratch. The identity if the codes are already non-decreasing, or if
-// the box is empty or not finite. Points outside the box (or NaN) are clamped to it.
-// O(n): a check, then a radix sort of 4 passes; n < 2^32.
+// the box is empty or not finite. Points outside the box (or NaN) are clamped to it. The codes
+// are computed four at a time where simd_level() allows (the same codes); like it, throws
+// InvalidInput for a bad MESHDEV_SIMD. O(n): a check, then a radix sort of 3 passes; n < 2^32.
 void morton_order(const Vec3* points, std::size_t n, const BoundingBox& box,
                   std::vector<std::uint32_t>& order, std::vector<std::uint64_t>& keys);
 
