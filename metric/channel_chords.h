@@ -23,8 +23,8 @@ struct ChordSample {
 
 // What channel_chords_x4 gives for one channel, lane l for sample l.
 struct ChannelChords {
-  // Unit normals: |na - nb| of the unit normals (unit_normal) of the interpolated values (0 for a
-  // zero or non-finite length, as unit_normal); raw values: their Euclidean distance.
+  // Unit normals: |na - nb| of the unit normals (unit_normal) of the interpolated values (the zero
+  // vector where the length is 0 or NaN, as unit_normal); raw values: their Euclidean distance.
   double chord[4];
   double across[4];  // unit normals: |na + nb|; raw values: unset
   int either_zero;   // unit normals: bit l set where lane l's na or nb is the zero vector
