@@ -15,7 +15,8 @@
 //
 // usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2] [--repeats 3]
 //                           [--engines meshdev,embree,cgal] [--embree-hint] [--embree-float]
-//                           [--rounds R] [--csv FILE] [--label NAME] [--ab R [--ab-chunk C]]
+//                           [--rounds R] [--csv FILE] [--label NAME]
+//                           [--ab R [--ab-chunk C] [--ab-build]]
 // --rounds R: after the table, meshdev and Embree (and Embree+hint with --embree-hint) are timed
 // once each, one after the other, R times over on each thread count, and the ratio of each round
 // is printed with the median and range: on a shared host whose speed drifts over minutes, the
@@ -25,7 +26,9 @@
 // both variants in turn, which goes first alternating from chunk to chunk and round to round, and
 // each round's ratio (variant 0's time / variant 1's: > 1 when variant 1 is faster) is printed
 // with the median and range over R rounds, per thread count of --threads. Also checks that both
-// variants give the same deviations and tie counts, bit for bit.
+// variants give the same deviations and tie counts, bit for bit. --ab-build: a change to the
+// build: each variant queries its own index, built under that variant; first both builds are
+// timed R times over per thread count, alternating which goes first, with the median ratio.
 #include <embree3/rtcore.h>
 #include <malloc.h>
 #include <omp.h>
@@ -443,6 +446,7 @@ struct Options {
   int rounds = 0;  // > 0: also time meshdev and Embree alternately, this many rounds (main())
   int ab = 0;      // > 0: only meshdev's variants 0 and 1, this many rounds (run_ab)
   std::size_t ab_chunk = 65536;  // samples per chunk of --ab
+  bool ab_build = false;         // --ab-build: each variant queries an index built under it
   std::string csv;
 };
 
@@ -460,7 +464,8 @@ std::vector<std::string> split(const std::string& s) {
                "usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2]\n"
                "                          [--repeats 3] [--engines meshdev,embree,cgal]\n"
                "                          [--embree-hint] [--embree-float] [--rounds R]\n"
-               "                          [--csv FILE] [--label NAME] [--ab R [--ab-chunk C]]\n");
+               "                          [--csv FILE] [--label NAME]\n"
+               "                          [--ab R [--ab-chunk C] [--ab-build]]\n");
   std::exit(2);
 }
 
@@ -494,6 +499,8 @@ Options parse(int argc, char** argv) {
       o.rounds = std::max(0, std::stoi(next()));
     else if (s == "--ab")
       o.ab = std::max(0, std::stoi(next()));
+    else if (s == "--ab-build")
+      o.ab_build = true;
     else if (s == "--ab-chunk")
       o.ab_chunk = std::max<std::size_t>(1, std::stoull(next()));
     else if (s == "--csv")
@@ -535,7 +542,7 @@ double median_of(std::vector<double> v) {
 // --ab R (see the top of this file): meshdev's variants 0 and 1 chunk-interleaved. Returns the
 // process's exit status: 1 if the variants' results differ.
 int run_ab(const Options& opt, const meshdev::SampleSet& set, const meshdev::AttributePlan& plan,
-           const meshdev::NearestPointIndex& index) {
+           const meshdev::NearestPointIndex* const index[2]) {
   std::vector<meshdev::SampleSet> chunks;
   for (std::size_t begin = 0; begin < set.samples.size(); begin += opt.ab_chunk) {
     const std::size_t end = std::min(set.samples.size(), begin + opt.ab_chunk);
@@ -553,7 +560,8 @@ int run_ab(const Options& opt, const meshdev::SampleSet& set, const meshdev::Att
     meshdev::DeviationOptions options;  // as meshdev_queries in main()
     options.threads = th;
     options.keep_nearest = false;
-    return meshdev::compute_deviations(chunk, plan.a, plan.b, index, plan.measures, options);
+    return meshdev::compute_deviations(chunk, plan.a, plan.b, *index[variant], plan.measures,
+                                       options);
   };
   // Both variants' answers, compared once (deviations bit for bit, tie counts).
   std::size_t differ = 0;
@@ -676,8 +684,35 @@ int main(int argc, char** argv) {
   }
 
   if (opt.ab > 0) {
-    auto index = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
-    return run_ab(opt, set, plan, *index);
+    std::unique_ptr<meshdev::NearestPointIndex> built[2];
+    if (opt.ab_build) {  // the builds, interleaved as the queries are
+      std::printf("A/B of the build of B (%zu faces):\n%3s %5s %12s %12s %12s\n", b.num_faces(),
+                  "thr", "round", "v0 build s", "v1 build s", "v0/v1 time");
+      for (int th : opt.threads) {
+        std::vector<double> ratio;
+        for (int r = 0; r < opt.ab; ++r) {
+          double t[2];
+          for (int v : {r % 2, 1 - r % 2}) {
+            meshdev::detail::set_ab_variant(v);
+            built[v].reset();  // (freeing the last one is not part of the build)
+            t0 = Clock::now();
+            built[v] = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh, {}, th);
+            t[v] = seconds_since(t0);
+          }
+          ratio.push_back(t[0] / t[1]);
+          std::printf("%3d %5d %12.4f %12.4f %12.4f\n", th, r + 1, t[0], t[1], t[0] / t[1]);
+        }
+        const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
+        std::printf("%3d build median v0/v1 %.4f (range %.4f-%.4f) over %d rounds\n", th,
+                    median_of(ratio), *lo, *hi, opt.ab);
+      }
+    } else {
+      built[0] = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
+    }
+    meshdev::detail::set_ab_variant(0);
+    const meshdev::NearestPointIndex* const index[2] = {built[0].get(),
+                                                        (built[1] ? built[1] : built[0]).get()};
+    return run_ab(opt, set, plan, index);
   }
 
   // The timed loops: meshdev's whole compute_deviations call, Embree's queries (exact callback
