@@ -40,6 +40,7 @@
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -539,8 +540,43 @@ double median_of(std::vector<double> v) {
   return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
-// --ab R (see the top of this file): meshdev's variants 0 and 1 chunk-interleaved. Returns the
-// process's exit status: 1 if the variants' results differ.
+// The last line of an A/B: the median and range of the rounds' ratios (variant 0 / variant 1).
+void print_ab_summary(int th, const char* what, const std::vector<double>& ratio) {
+  const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
+  std::printf("%3d %smedian v0/v1 %.4f (range %.4f-%.4f) over %zu rounds\n", th, what,
+              median_of(ratio), *lo, *hi, ratio.size());
+}
+
+// --ab R --ab-build (see the top of this file): B's index built under variant 0 and under
+// variant 1, in turn, R times over per thread count (which goes first alternating), each round's
+// times and ratio printed. Returns each variant's last index.
+std::array<std::unique_ptr<meshdev::NearestPointIndex>, 2> build_ab(const Options& opt,
+                                                                    const meshdev::TriMesh& b) {
+  std::array<std::unique_ptr<meshdev::NearestPointIndex>, 2> built;
+  std::printf("A/B of the build of B (%zu faces):\n%3s %5s %12s %12s %12s\n", b.num_faces(), "thr",
+              "round", "v0 build s", "v1 build s", "v0/v1 time");
+  for (int th : opt.threads) {
+    std::vector<double> ratio;
+    for (int r = 0; r < opt.ab; ++r) {
+      double t[2];
+      for (int v : {r % 2, 1 - r % 2}) {
+        meshdev::detail::set_ab_variant(v);
+        built[v].reset();  // (freeing the last one is not part of the build)
+        const auto t0 = Clock::now();
+        built[v] = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh, {}, th);
+        t[v] = seconds_since(t0);
+      }
+      ratio.push_back(t[0] / t[1]);
+      std::printf("%3d %5d %12.4f %12.4f %12.4f\n", th, r + 1, t[0], t[1], t[0] / t[1]);
+    }
+    print_ab_summary(th, "build ", ratio);
+  }
+  meshdev::detail::set_ab_variant(0);
+  return built;
+}
+
+// --ab R (see the top of this file): meshdev's variants 0 and 1 chunk-interleaved, variant v
+// answered by index[v]. Returns the process's exit status: 1 if the variants' results differ.
 int run_ab(const Options& opt, const meshdev::SampleSet& set, const meshdev::AttributePlan& plan,
            const meshdev::NearestPointIndex* const index[2]) {
   std::vector<meshdev::SampleSet> chunks;
@@ -599,9 +635,7 @@ int run_ab(const Options& opt, const meshdev::SampleSet& set, const meshdev::Att
       std::printf("%3d %5d %12.3f %12.3f %12.4f\n", th, r + 1, n / t[0] / 1e6, n / t[1] / 1e6,
                   t[0] / t[1]);
     }
-    const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
-    std::printf("%3d median v0/v1 %.4f (range %.4f-%.4f) over %d rounds\n", th, median_of(ratio),
-                *lo, *hi, opt.ab);
+    print_ab_summary(th, "", ratio);
   }
   meshdev::detail::set_ab_variant(0);
   return differ > 0 ? 1 : 0;
@@ -684,32 +718,11 @@ int main(int argc, char** argv) {
   }
 
   if (opt.ab > 0) {
-    std::unique_ptr<meshdev::NearestPointIndex> built[2];
-    if (opt.ab_build) {  // the builds, interleaved as the queries are
-      std::printf("A/B of the build of B (%zu faces):\n%3s %5s %12s %12s %12s\n", b.num_faces(),
-                  "thr", "round", "v0 build s", "v1 build s", "v0/v1 time");
-      for (int th : opt.threads) {
-        std::vector<double> ratio;
-        for (int r = 0; r < opt.ab; ++r) {
-          double t[2];
-          for (int v : {r % 2, 1 - r % 2}) {
-            meshdev::detail::set_ab_variant(v);
-            built[v].reset();  // (freeing the last one is not part of the build)
-            t0 = Clock::now();
-            built[v] = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh, {}, th);
-            t[v] = seconds_since(t0);
-          }
-          ratio.push_back(t[0] / t[1]);
-          std::printf("%3d %5d %12.4f %12.4f %12.4f\n", th, r + 1, t[0], t[1], t[0] / t[1]);
-        }
-        const auto [lo, hi] = std::minmax_element(ratio.begin(), ratio.end());
-        std::printf("%3d build median v0/v1 %.4f (range %.4f-%.4f) over %d rounds\n", th,
-                    median_of(ratio), *lo, *hi, opt.ab);
-      }
-    } else {
+    std::array<std::unique_ptr<meshdev::NearestPointIndex>, 2> built;
+    if (opt.ab_build)
+      built = build_ab(opt, b);
+    else
       built[0] = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
-    }
-    meshdev::detail::set_ab_variant(0);
     const meshdev::NearestPointIndex* const index[2] = {built[0].get(),
                                                         (built[1] ? built[1] : built[0]).get()};
     return run_ab(opt, set, plan, index);
