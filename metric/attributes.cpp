@@ -13,11 +13,10 @@ namespace {
 
 constexpr int kMaxDim = 16;
 
-AttributeChannel computed_normals(const TriMesh& m, NormalWeighting w) {
-  std::vector<Vec3> n = compute_vertex_normals(m, w);
-  AttributeChannel c{"normal", AttributeKind::kNormal, Storage::kPerVertex, 3, {}};
-  c.values.reserve(3 * n.size());
-  for (const Vec3& v : n) c.values.insert(c.values.end(), {v.x, v.y, v.z});
+AttributeChannel computed_normals(const TriMesh& m, NormalWeighting w, int threads) {
+  AttributeChannel c{"normal", AttributeKind::kNormal, Storage::kPerVertex, 3,
+                     std::vector<double>(3 * m.positions.size())};
+  compute_vertex_normals(m, w, threads, c.values.data());
   return c;
 }
 
@@ -125,8 +124,8 @@ AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const Attribut
         const NormalWeighting w = source == NormalSource::kArea    ? NormalWeighting::kArea
                                   : source == NormalSource::kAngle ? NormalWeighting::kAngle
                                                                    : NormalWeighting::kUniform;
-        plan.a.computed.push_back(computed_normals(a, w));
-        plan.b.computed.push_back(computed_normals(b, w));
+        plan.a.computed.push_back(computed_normals(a, w, options.threads));
+        plan.b.computed.push_back(computed_normals(b, w, options.threads));
         plan.normal_source = source == NormalSource::kArea ? "computed (area-weighted)"
                              : source == NormalSource::kAngle
                                  ? "computed (angle-weighted)"

@@ -62,6 +62,7 @@ struct AttributeOptions {
   // missing on either mesh is an InvalidInput error.
   std::vector<std::string> attributes;
   NormalSource normals = NormalSource::kAuto;
+  int threads = 0;  // OpenMP threads for computed normals (0 = OpenMP's default); same result
 };
 
 // A mesh with the channels a comparison needs: its own plus any computed ones (normals).

@@ -122,16 +122,16 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
 
 }  // namespace
 
-MeshSummary summarize(const TriMesh& mesh, const std::string& label) {
+MeshSummary summarize(const TriMesh& mesh, const std::string& label, int threads) {
   MeshSummary s;
   s.label = label;
   s.vertices = mesh.num_vertices();
-  const std::vector<bool> used = referenced_vertices(mesh);
-  s.referenced_vertices = static_cast<std::size_t>(std::count(used.begin(), used.end(), true));
+  const ReferencedVertices referenced = referenced_vertex_summary(mesh, threads);
+  s.referenced_vertices = referenced.count;
   s.faces = mesh.num_faces();
   s.polygons = mesh.source_polygons > 0 ? mesh.source_polygons : mesh.num_faces();
-  s.area = surface_area(mesh);
-  s.box = bounding_box(mesh, used);
+  s.area = surface_area(mesh, threads);
+  s.box = referenced.box;
   for (const AttributeChannel& c : mesh.channels) s.channels.push_back(c.name);
   return s;
 }
@@ -139,18 +139,20 @@ MeshSummary summarize(const TriMesh& mesh, const std::string& label) {
 ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
                                 const std::string& label_a, const std::string& label_b) {
   const auto start = Clock::now();
-  validate(a, label_a);
-  validate(b, label_b);
+  validate(a, label_a, options.threads);
+  validate(b, label_b, options.threads);
   if (a.positions.empty()) throw InvalidInput(label_a + " has no vertices");
   if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
 
   ComparisonResult r;
   r.options = options;
-  r.a = summarize(a, label_a);
-  r.b = summarize(b, label_b);
+  r.a = summarize(a, label_a, options.threads);
+  r.b = summarize(b, label_b, options.threads);
   r.diagonal = r.a.box.diagonal();
 
-  AttributePlan plan = plan_attributes(a, b, options.attributes, label_a, label_b);
+  AttributeOptions attribute_options = options.attributes;
+  attribute_options.threads = options.threads;
+  AttributePlan plan = plan_attributes(a, b, attribute_options, label_a, label_b);
   r.measures = plan.measures;
   r.normal_source = plan.normal_source;
 

@@ -93,7 +93,9 @@ struct ComparisonResult {
 ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
                                 const std::string& label_a = "A", const std::string& label_b = "B");
 
-// The summary of one mesh (counts, area, box, channels). O(V + F).
-MeshSummary summarize(const TriMesh& mesh, const std::string& label);
+// The summary of one mesh (counts, area, box, channels), on `threads` OpenMP threads (0: the
+// default; the same summary for any team). Precondition: face indices in range (validate).
+// O((V + F) / threads + F).
+MeshSummary summarize(const TriMesh& mesh, const std::string& label, int threads = 1);
 
 }  // namespace meshdev
