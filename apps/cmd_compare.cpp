@@ -87,8 +87,8 @@ CompareOptions to_options(const CompareArgs& args) {
 
 int run_compare(const CompareArgs& args) {
   const CompareOptions options = to_options(args);
-  const TriMesh a = read_mesh(args.a);
-  const TriMesh b = read_mesh(args.b);
+  const TriMesh a = read_mesh(args.a, args.threads);
+  const TriMesh b = read_mesh(args.b, args.threads);
   const ComparisonResult result = compare_meshes(a, b, options, args.a, args.b);
 
   if (!args.quiet) std::cout << format_report(result) << std::flush;

@@ -1,5 +1,6 @@
 // Reader speed on real files from ../shared/data (the readers' unit tests check what is read,
-// this checks how fast). Each benchmark is skipped with a message when the data is absent.
+// this checks how fast), on 1 and 2 threads (the argument: large OBJ files are parsed in chunks
+// on the team). Each benchmark is skipped with a message when the data is absent.
 // BM_ReadBinaryPly reads a binary PLY written here from a 1.3 M-face icosphere (float or double
 // x y z, uchar count + int indices: what write_ply, MeshLab and most scanners write), so it runs
 // everywhere.
@@ -21,9 +22,10 @@ void BM_ReadMesh(benchmark::State& state, const std::string& relative) {
     state.SkipWithError(("not present (needs ../shared/data): " + path.string()).c_str());
     return;
   }
+  const auto threads = static_cast<int>(state.range(0));
   std::size_t faces = 0;
   for (auto _ : state) {
-    const TriMesh m = read_mesh(path.string());
+    const TriMesh m = read_mesh(path.string(), threads);
     faces = m.num_faces();
     benchmark::DoNotOptimize(faces);
   }
@@ -33,8 +35,18 @@ void BM_ReadMesh(benchmark::State& state, const std::string& relative) {
       static_cast<std::int64_t>(state.iterations() * std::filesystem::file_size(path)));
 }
 BENCHMARK_CAPTURE(BM_ReadMesh, buildings_obj, std::string("large/buildings.obj"))
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ReadMesh, koala_obj, std::string("plain/koala.obj"))
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ReadMesh, bun_zipper_ply, std::string("scalar/stanford_bunny/bun_zipper.ply"))
+    ->ArgName("threads")
+    ->Arg(1)
     ->Unit(benchmark::kMillisecond);
 
 void BM_ReadBinaryPly(benchmark::State& state) {

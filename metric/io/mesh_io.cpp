@@ -73,7 +73,7 @@ Format by_content(std::string_view data) {
 
 }  // namespace
 
-TriMesh read_mesh(const std::string& path) {
+TriMesh read_mesh(const std::string& path, int threads) {
   const io_detail::FileBytes bytes(path);
   const std::string_view data = bytes.view();
   if (data.empty()) throw ParseError(path, "", "empty file");
@@ -92,7 +92,7 @@ TriMesh read_mesh(const std::string& path) {
               << format_name(format) << '\n';
   switch (format) {
     case Format::kObj:
-      return read_obj(path, data);
+      return read_obj(path, data, threads);
     case Format::kPly:
       return read_ply(path, data);
     case Format::kOff:

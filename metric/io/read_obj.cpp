@@ -1,5 +1,8 @@
 #include "metric/io/read_obj.h"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cassert>
 #include <filesystem>
 #include <iostream>
@@ -39,13 +42,37 @@ struct ObjPolygons {
   std::vector<std::size_t> first;     // first corner of polygon i; first.back() = corners
 };
 
+// The three kinds of index a face corner holds.
+enum IndexKind { kVertexIndex, kUvIndex, kNormalIndex };
+constexpr const char* kIndexName[3] = {"vertex", "texture coordinate", "normal"};
+
 class ObjParser {
  public:
   ObjParser(const std::string& path, std::string_view content) : path_(path), content_(content) {}
 
-  TriMesh parse();
+  // The whole file, line by line (the serial parse, and the chunked parse's oracle).
+  TriMesh parse() {
+    read_lines(0, io_detail::strip_bom(content_).size());
+    return finish();
+  }
+  // One chunk of the chunked parse: the lines starting in [begin, end) (offsets into the text
+  // without its byte order mark, at line starts), read as parse() reads them except that
+  // relative indices are recorded to be resolved once the counts before the chunk are known
+  // (merge). Throws ParseError where parse() would fail on these lines alone.
+  void read_chunk(std::size_t begin, std::size_t end) {
+    chunk_ = true;
+    read_lines(begin, end);
+  }
+  // Appends the chunks read by read_chunk, in file order, to this (fresh) parser: their arrays
+  // concatenated, their relative indices resolved. False where the chunks disagree in a way
+  // parse() reports as an error (vertex colours on some vertices only, faces referencing
+  // different attributes, a relative index before the first): the caller then runs parse() for
+  // its message.
+  bool merge(std::vector<ObjParser>& chunks);
+  TriMesh finish();
 
  private:
+  void read_lines(std::size_t begin, std::size_t end);
   [[noreturn]] void fail(const std::string& what) const {
     throw ParseError(path_, "line " + std::to_string(lines_.line_number()), what);
   }
@@ -59,7 +86,7 @@ class ObjParser {
   void parse_values(Tokens& t, std::vector<double>& out, int min_count, int max_count, int keep,
                     const char* what);
   void parse_face(Tokens& t);
-  std::uint32_t resolve(std::string_view token, std::size_t count, const char* what) const;
+  std::uint32_t resolve(std::string_view token, std::size_t count, IndexKind kind);
   void check_deferred(const std::vector<std::uint32_t>& ids, std::size_t count,
                       const char* what) const;
   // The line of polygon p: the p-th 'f' line (a face that does not parse ends the parse), found
@@ -82,10 +109,80 @@ class ObjParser {
   int face_has_vt_ = -1, face_has_vn_ = -1;  // -1 until the first face
   std::size_t first_face_line_ = 0;
   std::string mtllib_, material_;
+  // Chunk mode: relative indices, each as the corner's position in its list (polys_.v, .vt or
+  // .vn) and the index counted from the chunk's first element of its kind (negative: before it).
+  struct Relative {
+    std::size_t corner;
+    std::int64_t local;
+  };
+  bool chunk_ = false;
+  std::vector<Relative> relative_[3];
 };
 
-TriMesh ObjParser::parse() {
-  lines_ = LineReader(io_detail::strip_bom(content_));
+// Whether two first vertices' value counts after x y z agree (parse_vertex's rule: w or nothing
+// are one class; r g b and r g b a are each their own).
+bool same_color_class(int a, int b) {
+  return a == b || (a <= 1 && b <= 1);
+}
+
+template <class T>
+void append(std::vector<T>& to, const std::vector<T>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+bool ObjParser::merge(std::vector<ObjParser>& chunks) {
+  std::size_t corners = 0, polygons = 0, vertices = 0;
+  for (const ObjParser& c : chunks) {
+    corners += c.polys_.v.size();
+    polygons += c.polys_.first.size() - 1;
+    vertices += c.positions_.size();
+  }
+  polys_.v.reserve(corners);
+  polys_.first.reserve(polygons + 1);
+  positions_.reserve(vertices);
+  polys_.first.push_back(0);
+  for (ObjParser& c : chunks) {
+    assert(c.chunk_);
+    if (c.color_values_ >= 0) {
+      if (color_values_ < 0)
+        color_values_ = c.color_values_;
+      else if (!same_color_class(color_values_, c.color_values_))
+        return false;
+    }
+    if (c.face_has_vt_ >= 0) {
+      if (face_has_vt_ < 0)
+        face_has_vt_ = c.face_has_vt_, face_has_vn_ = c.face_has_vn_;
+      else if (c.face_has_vt_ != face_has_vt_ || c.face_has_vn_ != face_has_vn_)
+        return false;
+    }
+    if (mtllib_.empty()) mtllib_ = c.mtllib_;
+    if (material_.empty()) material_ = c.material_;
+    const std::size_t before[3] = {positions_.size(), uvs_.size() / 2, normals_.size() / 3};
+    std::vector<std::uint32_t>* lists[3] = {&polys_.v, &polys_.vt, &polys_.vn};
+    const std::vector<std::uint32_t>* chunk_lists[3] = {&c.polys_.v, &c.polys_.vt, &c.polys_.vn};
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t at = lists[k]->size();
+      append(*lists[k], *chunk_lists[k]);
+      for (const Relative& r : c.relative_[k]) {
+        const std::int64_t index = static_cast<std::int64_t>(before[k]) + r.local;
+        if (index < 0) return false;  // before the first (parse() names it)
+        (*lists[k])[at + r.corner] = static_cast<std::uint32_t>(index);
+      }
+    }
+    const std::size_t corner_base = polys_.first.back();
+    for (std::size_t p = 1; p < c.polys_.first.size(); ++p)
+      polys_.first.push_back(corner_base + c.polys_.first[p]);
+    append(positions_, c.positions_);
+    append(colors_, c.colors_);
+    append(alpha_, c.alpha_);
+    append(uvs_, c.uvs_);
+    append(normals_, c.normals_);
+  }
+  return true;
+}
+
+void ObjParser::read_lines(std::size_t begin, std::size_t end) {
+  lines_ = LineReader(io_detail::strip_bom(content_).substr(0, end), begin);
   polys_.first.push_back(0);
   std::string_view line;
   while (lines_.next(line)) {
@@ -108,6 +205,9 @@ TriMesh ObjParser::parse() {
       fail("unknown OBJ keyword " + quoted(key));
     }
   }
+}
+
+TriMesh ObjParser::finish() {
   if (positions_.empty()) throw ParseError(path_, "", "no vertices (no 'v' line)");
 
   // Positive indices may refer to vertices defined later in the file: check them now.
@@ -177,8 +277,8 @@ void ObjParser::parse_values(Tokens& t, std::vector<double>& out, int min_count,
   out.insert(out.end(), v, v + keep);
 }
 
-std::uint32_t ObjParser::resolve(std::string_view token, std::size_t count,
-                                 const char* what) const {
+std::uint32_t ObjParser::resolve(std::string_view token, std::size_t count, IndexKind kind) {
+  const char* what = kIndexName[kind];
   std::int64_t i = 0;
   NumberStatus s = io_detail::parse_int(token, i);
   if (s == NumberStatus::kNotNumber)
@@ -186,6 +286,12 @@ std::uint32_t ObjParser::resolve(std::string_view token, std::size_t count,
   if (s != NumberStatus::kOk)
     fail(std::string(what) + " index " + quoted(token) + " is out of range");
   if (i == 0) fail(std::string(what) + " index 0 (OBJ indices start at 1)");
+  if (i < 0 && chunk_) {  // resolved by merge(): the count before the chunk is not known yet
+    const std::vector<std::uint32_t>& list =
+        kind == kVertexIndex ? polys_.v : (kind == kUvIndex ? polys_.vt : polys_.vn);
+    relative_[kind].push_back({list.size(), static_cast<std::int64_t>(count) + i});
+    return 0;
+  }
   if (i < 0) {
     // Relative: -1 is the last one defined so far.
     // Negated in unsigned arithmetic: -INT64_MIN overflows (found by fuzz_read_mesh).
@@ -225,11 +331,11 @@ void ObjParser::parse_face(Tokens& t) {
     if (vt_here != has_vt || vn_here != has_vn)
       fail("face corners " + std::to_string(corners + 1) +
            " and 1 differ in which of vt/vn they reference (" + quoted(tok) + ")");
-    polys_.v.push_back(resolve(a, positions_.size(), "vertex"));
+    polys_.v.push_back(resolve(a, positions_.size(), kVertexIndex));
     // (Every face references vt and vn as the first one does, or the parse fails below: so vt
     // and vn end up with an entry per corner or none.)
-    if (slash_vt) polys_.vt.push_back(resolve(b, uvs_.size() / 2, "texture coordinate"));
-    if (slash_vn) polys_.vn.push_back(resolve(c, normals_.size() / 3, "normal"));
+    if (slash_vt) polys_.vt.push_back(resolve(b, uvs_.size() / 2, kUvIndex));
+    if (slash_vn) polys_.vn.push_back(resolve(c, normals_.size() / 3, kNormalIndex));
     ++corners;
   }
   if (corners < 3) {
@@ -369,8 +475,53 @@ void ObjParser::resolve_texture(TriMesh& mesh) const {
 
 }  // namespace
 
-TriMesh read_obj(const std::string& path, std::string_view content) {
-  return ObjParser(path, content).parse();
+namespace detail {
+
+TriMesh read_obj_in_chunks(const std::string& path, std::string_view content, int chunks,
+                           int threads, bool* used_chunks) {
+  if (used_chunks != nullptr) *used_chunks = false;
+  const std::string_view text = io_detail::strip_bom(content);
+  // Chunk starts: about equal byte ranges, each moved on to the start of a line.
+  std::vector<std::size_t> start{0};
+  for (int k = 1; k < chunks; ++k) {
+    std::size_t at = std::max(
+        start.back(), text.size() * static_cast<std::size_t>(k) / static_cast<std::size_t>(chunks));
+    if (at > 0 && at < text.size() && text[at - 1] != '\n') {
+      const std::size_t newline = text.find('\n', at);
+      at = newline == std::string_view::npos ? text.size() : newline + 1;
+    }
+    if (at > start.back() && at < text.size()) start.push_back(at);
+  }
+  start.push_back(text.size());
+  const auto n = static_cast<std::int64_t>(start.size() - 1);
+  std::vector<ObjParser> parts(static_cast<std::size_t>(n), ObjParser(path, content));
+  bool failed = false;
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel for num_threads(team) schedule(dynamic, 1) reduction(|| : failed)
+  for (std::int64_t k = 0; k < n; ++k) {
+    try {
+      parts[static_cast<std::size_t>(k)].read_chunk(start[k], start[k + 1]);
+    } catch (...) {   // (no exception may leave the parallel region)
+      failed = true;  // parse() below finds the first error and names its line
+    }
+  }
+  ObjParser whole(path, content);
+  if (failed || !whole.merge(parts)) return ObjParser(path, content).parse();
+  parts.clear();
+  TriMesh mesh = whole.finish();
+  if (used_chunks != nullptr) *used_chunks = true;
+  return mesh;
+}
+
+}  // namespace detail
+
+TriMesh read_obj(const std::string& path, std::string_view content, int threads) {
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  if (team == 1 || content.size() < 2 * detail::kObjChunkBytes)
+    return ObjParser(path, content).parse();
+  const auto chunks = static_cast<int>(std::min<std::size_t>(
+      4 * static_cast<std::size_t>(team), content.size() / detail::kObjChunkBytes));
+  return detail::read_obj_in_chunks(path, content, chunks, team);
 }
 
 }  // namespace meshdev

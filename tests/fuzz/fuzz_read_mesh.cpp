@@ -2,16 +2,21 @@
 // Only ParseError / IoError may escape the reader, and a mesh it returns must be valid
 // (finite positions, indices in range, consistent channels) with at least one vertex.
 // Anything else (another exception, a sanitizer report, a hang, a huge allocation) is a finding.
+// The bytes are also parsed as OBJ in 3 chunks of lines (read_obj's parse of large files), which
+// must give the line-by-line parse's mesh or its error message.
 #include <unistd.h>
 
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <string>
+#include <string_view>
 
 #include "metric/errors.h"
 #include "metric/io/mesh_io.h"
+#include "metric/io/read_obj.h"
 #include "metric/mesh.h"
 
 namespace {
@@ -26,6 +31,37 @@ void write_file(const std::string& path, const std::uint8_t* data, std::size_t s
   if (!f) std::abort();
   if (size && std::fwrite(data, 1, size, f) != size) std::abort();
   if (std::fclose(f) != 0) std::abort();
+}
+
+// The chunked OBJ parse against the line-by-line one: the same error, or the same mesh bit for
+// bit (a difference aborts: a finding).
+void check_obj_chunks(const std::string& path, std::string_view content) {
+  std::string want_error, got_error;
+  meshdev::TriMesh want, got;
+  try {
+    want = meshdev::read_obj(path, content, 1);
+  } catch (const meshdev::IoError& e) {
+    want_error = e.what();
+  }
+  try {
+    got = meshdev::detail::read_obj_in_chunks(path, content, 3, 1);
+  } catch (const meshdev::IoError& e) {
+    got_error = e.what();
+  }
+  if (got_error != want_error) std::abort();
+  if (!want_error.empty()) return;
+  bool same = got.faces == want.faces && got.positions.size() == want.positions.size() &&
+              got.channels.size() == want.channels.size() &&
+              got.source_polygons == want.source_polygons && got.texture_file == want.texture_file;
+  for (std::size_t v = 0; same && v < got.positions.size(); ++v)
+    same = std::memcmp(&got.positions[v], &want.positions[v], sizeof(meshdev::Vec3)) == 0;
+  for (std::size_t c = 0; same && c < got.channels.size(); ++c)
+    same = got.channels[c].name == want.channels[c].name &&
+           got.channels[c].storage == want.channels[c].storage &&
+           got.channels[c].values.size() == want.channels[c].values.size() &&
+           std::memcmp(got.channels[c].values.data(), want.channels[c].values.data(),
+                       got.channels[c].values.size() * sizeof(double)) == 0;
+  if (!same) std::abort();
 }
 
 }  // namespace
@@ -49,5 +85,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const meshdev::IoError&) {  // ParseError derives from IoError
     }
   }
+  check_obj_chunks(folder() + "/input.obj",
+                   std::string_view(reinterpret_cast<const char*>(data), size));
   return 0;
 }
