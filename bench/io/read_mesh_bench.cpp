@@ -1,6 +1,6 @@
 // Reader speed on real files from ../shared/data (the readers' unit tests check what is read,
-// this checks how fast), on 1 and 2 threads (the argument: large OBJ files are parsed in chunks
-// on the team). Each benchmark is skipped with a message when the data is absent.
+// this checks how fast), on 1 and 2 threads (the argument: large OBJ and OFF files are parsed in
+// chunks on the team). Each benchmark is skipped with a message when the data is absent.
 // BM_ReadBinaryPly reads a binary PLY written here from a 1.3 M-face icosphere (float or double
 // x y z, uchar count + int indices: what write_ply, MeshLab and most scanners write), so it runs
 // everywhere.
@@ -40,6 +40,11 @@ BENCHMARK_CAPTURE(BM_ReadMesh, buildings_obj, std::string("large/buildings.obj")
     ->Arg(2)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ReadMesh, koala_obj, std::string("plain/koala.obj"))
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ReadMesh, armadillo_off, std::string("plain/armadillo.off"))
     ->ArgName("threads")
     ->Arg(1)
     ->Arg(2)

@@ -96,7 +96,7 @@ TriMesh read_mesh(const std::string& path, int threads) {
     case Format::kPly:
       return read_ply(path, data);
     case Format::kOff:
-      return read_off(path, data);
+      return read_off(path, data, threads);
     case Format::kStl:
       return read_stl(path, data);
     case Format::kUnknown:

@@ -16,7 +16,7 @@ namespace meshdev {
 // other scalar vertex property under its own name.
 // Throws ParseError("<file>: <line/byte/element>: <what>") on any malformed input, IoError when
 // the file cannot be opened. Never repairs silently. `threads`: OpenMP threads for the readers
-// that parse in parallel (large OBJ files; 0: the default); the mesh does not depend on it.
+// that parse in parallel (large OBJ and OFF files; 0: the default); the mesh does not depend on it.
 // O(file size) time and memory.
 TriMesh read_mesh(const std::string& path, int threads = 0);
 

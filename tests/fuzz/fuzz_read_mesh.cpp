@@ -2,8 +2,8 @@
 // Only ParseError / IoError may escape the reader, and a mesh it returns must be valid
 // (finite positions, indices in range, consistent channels) with at least one vertex.
 // Anything else (another exception, a sanitizer report, a hang, a huge allocation) is a finding.
-// The bytes are also parsed as OBJ in 3 chunks of lines (read_obj's parse of large files), which
-// must give the line-by-line parse's mesh or its error message.
+// The bytes are also parsed as OBJ and as OFF in 3 chunks of lines (the readers' parse of large
+// files), which must give the line-by-line parse's mesh or its error message.
 #include <unistd.h>
 
 #include <cstdint>
@@ -17,6 +17,7 @@
 #include "metric/errors.h"
 #include "metric/io/mesh_io.h"
 #include "metric/io/read_obj.h"
+#include "metric/io/read_off.h"
 #include "metric/mesh.h"
 
 namespace {
@@ -33,18 +34,19 @@ void write_file(const std::string& path, const std::uint8_t* data, std::size_t s
   if (std::fclose(f) != 0) std::abort();
 }
 
-// The chunked OBJ parse against the line-by-line one: the same error, or the same mesh bit for
-// bit (a difference aborts: a finding).
-void check_obj_chunks(const std::string& path, std::string_view content) {
+// A chunked parse against the line-by-line one: the same error, or the same mesh bit for bit (a
+// difference aborts: a finding).
+template <class LineByLine, class Chunked>
+void check_chunks(LineByLine line_by_line, Chunked chunked) {
   std::string want_error, got_error;
   meshdev::TriMesh want, got;
   try {
-    want = meshdev::read_obj(path, content, 1);
+    want = line_by_line();
   } catch (const meshdev::IoError& e) {
     want_error = e.what();
   }
   try {
-    got = meshdev::detail::read_obj_in_chunks(path, content, 3, 1);
+    got = chunked();
   } catch (const meshdev::IoError& e) {
     got_error = e.what();
   }
@@ -85,7 +87,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } catch (const meshdev::IoError&) {  // ParseError derives from IoError
     }
   }
-  check_obj_chunks(folder() + "/input.obj",
-                   std::string_view(reinterpret_cast<const char*>(data), size));
+  const std::string_view content(reinterpret_cast<const char*>(data), size);
+  const std::string obj = folder() + "/input.obj", off = folder() + "/input.off";
+  check_chunks([&] { return meshdev::read_obj(obj, content, 1); },
+               [&] { return meshdev::detail::read_obj_in_chunks(obj, content, 3, 1); });
+  check_chunks([&] { return meshdev::read_off(off, content, 1); },
+               [&] { return meshdev::detail::read_off_in_chunks(off, content, 3, 1); });
   return 0;
 }

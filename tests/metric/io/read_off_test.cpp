@@ -2,7 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <string>
+#include <vector>
+
 #include "metric/io/mesh_io.h"
+#include "metric/io/text_scan.h"
 #include "tests/metric/io/io_test_util.h"
 #include "tests/support/test_data.h"
 
@@ -113,6 +118,169 @@ TEST(ReadOffCgal, MeshWithColoursAndBunny) {
   TriMesh bunny = read_mesh(cgal_mesh("bunny00.off"));
   EXPECT_EQ(bunny.num_vertices(), 37706u);
   EXPECT_EQ(bunny.num_faces(), 75408u);
+}
+
+// --- The chunked parse (large files on a team) against the line-by-line parse, its oracle. ---
+
+void expect_same_mesh(const TriMesh& got, const TriMesh& want) {
+  ASSERT_EQ(got.positions.size(), want.positions.size());
+  for (std::size_t v = 0; v < got.positions.size(); ++v)
+    for (int k = 0; k < 3; ++k) ASSERT_EQ(got.positions[v][k], want.positions[v][k]) << v;
+  EXPECT_EQ(got.faces, want.faces);
+  EXPECT_EQ(got.source_polygons, want.source_polygons);
+  EXPECT_EQ(got.source_file, want.source_file);
+  ASSERT_EQ(got.channels.size(), want.channels.size());
+  for (std::size_t c = 0; c < got.channels.size(); ++c) {
+    EXPECT_EQ(got.channels[c].name, want.channels[c].name);
+    EXPECT_EQ(got.channels[c].storage, want.channels[c].storage);
+    EXPECT_EQ(got.channels[c].values, want.channels[c].values) << got.channels[c].name;
+  }
+}
+
+struct Outcome {
+  TriMesh mesh;
+  std::string error;
+};
+template <class Parse>
+Outcome outcome_of(Parse&& parse) {
+  Outcome o;
+  try {
+    o.mesh = parse();
+  } catch (const ParseError& e) {
+    o.error = e.what();
+  }
+  return o;
+}
+
+// The chunked parse gives the line-by-line parse's mesh or error for several chunk counts and
+// teams; `chunked`: whether the chunks' result must be the one returned.
+void expect_chunks_agree(const std::string& off, bool chunked) {
+  const std::string path = "chunks.off";
+  const Outcome want = outcome_of([&] { return read_off(path, off, 1); });
+  EXPECT_EQ(want.error.empty(), chunked) << want.error;
+  for (int chunks : {2, 3, 5, 17})
+    for (int threads : {1, 2}) {
+      SCOPED_TRACE("chunks " + std::to_string(chunks) + ", threads " + std::to_string(threads));
+      bool used = false;
+      const Outcome got =
+          outcome_of([&] { return detail::read_off_in_chunks(path, off, chunks, threads, &used); });
+      EXPECT_EQ(got.error, want.error);
+      EXPECT_EQ(used, chunked);
+      if (want.error.empty()) expect_same_mesh(got.mesh, want.mesh);
+    }
+}
+
+// A grid of n x n quads (some written as two triangles, some with a face colour), with comments
+// and blank lines between records; `keyword` decides the vertex lines' values (C: integer RGB,
+// or float RGB where `float_colors`; N: normals; ST: texture coordinates).
+std::string grid_off(int n, const std::string& keyword, bool float_colors = false) {
+  const int side = n + 1;
+  std::string records;
+  int faces = 0;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      records += std::to_string(x * 0.5) + " " + std::to_string(y / 3.0) + " 0";
+      if (keyword.find('N') != std::string::npos) records += " 0 0 1";
+      if (keyword.find('C') != std::string::npos)
+        records += float_colors ? " 0.5 0.25 " + std::to_string((x % 4) / 4.0)
+                                : " 255 " + std::to_string(x % 256) + " 7";
+      if (keyword.find("ST") != std::string::npos)
+        records += " " + std::to_string(x / double(n)) + " 0.5";
+      records += (x + y) % 11 == 0 ? "   # vertex\n\n" : "\n";
+    }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int a = y * side + x, b = a + 1, c = a + side + 1, d = a + side;
+      if ((x + y) % 3 == 0) {
+        records += "3 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) +
+                   "\n3 " + std::to_string(a) + " " + std::to_string(c) + " " + std::to_string(d) +
+                   " 255 0 0\n";
+        faces += 2;
+      } else {
+        records += "4 " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(c) +
+                   " " + std::to_string(d) + (x % 7 == 0 ? " # quad\r\n" : "\n");
+        faces += 1;
+      }
+    }
+  return "# grid\n" + keyword + "\n" + std::to_string(side * side) + " " + std::to_string(faces) +
+         " 0\n" + records;
+}
+
+TEST(ReadOff, ChunkedParseEqualsTheLineByLineParse) {
+  expect_chunks_agree(grid_off(30, "OFF"), true);
+  expect_chunks_agree(grid_off(20, "COFF"), true);
+  expect_chunks_agree(grid_off(20, "COFF", true), true);
+  expect_chunks_agree(grid_off(20, "STCNOFF"), true);
+  // The counts on the keyword line, a byte order mark, a single record of each kind.
+  expect_chunks_agree("\xEF\xBB\xBFOFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2", true);
+}
+
+TEST(ReadOff, ChunkedParseReportsTheLineByLineParsesError) {
+  const std::string grid = grid_off(20, "OFF");
+  // A malformed number early and one late: the first is named.
+  std::string two_errors = grid;
+  two_errors.insert(two_errors.find("\n1 ", two_errors.size() / 3) + 1, "0 x 0\n");
+  two_errors.insert(two_errors.size() - 2, " y");
+  expect_chunks_agree(two_errors, false);
+  // One record too many, one too few (the file ends early).
+  expect_chunks_agree(grid + "3 0 1 2\n", false);
+  expect_chunks_agree(grid.substr(0, grid.rfind("\n", grid.size() - 2) + 1), false);
+  // An index out of range in the last face.
+  std::string bad_index = grid;
+  bad_index.replace(bad_index.rfind(' ') + 1, std::string::npos, "99999\n");
+  expect_chunks_agree(bad_index, false);
+  // RGB colours up to the first vertex of the second of two chunks, RGBA from there on: each
+  // chunk agrees with itself, so only the check that spans chunks finds it. Every vertex line
+  // has the same length (RGB ones padded with spaces), so where the chunks are cut (about half
+  // of the records' bytes, moved on to a line start) does not depend on where RGBA begins.
+  {
+    const int n = 1000;
+    std::string faces;
+    for (int i = 0; i + 2 < n; ++i)
+      faces += "3 " + std::to_string(i) + " " + std::to_string(i + 1) + " " +
+               std::to_string(i + 2) + "\n";
+    const std::string header = "COFF\n" + std::to_string(n) + " " + std::to_string(n - 2) + " 0\n";
+    auto vertex = [](int i, bool alpha) {
+      char line[64];
+      std::snprintf(line, sizeof line, "%04d.5 %04d.25 0 200 100 50 %s\n", i, i % 97,
+                    alpha ? "255" : "   ");
+      return std::string(line);
+    };
+    const std::size_t length = vertex(0, false).size(), records = n * length + faces.size();
+    const std::size_t first_rgba = (records / 2 + length - 1) / length;  // the second chunk's
+    ASSERT_LT(first_rgba, static_cast<std::size_t>(n));
+    std::string mixed = header;
+    for (int i = 0; i < n; ++i) mixed += vertex(i, static_cast<std::size_t>(i) >= first_rgba);
+    expect_chunks_agree(mixed + faces, false);
+  }
+  std::string colours = grid_off(20, "COFF");
+  const std::size_t faces = colours.find("\n3 ", colours.find(" 0\n") + 3);
+  const std::size_t last_vertex = colours.rfind('\n', colours.rfind('\n', faces) - 1);
+  std::string over = colours;
+  over.insert(colours.find('\n', last_vertex + 1), "00");  // 7 -> 700
+  expect_chunks_agree(over, false);
+}
+
+// The real OFF files of ../shared/data and CGAL's data read in chunks on two threads: the
+// line-by-line parse's mesh, and the chunks' result used.
+TEST(ReadOffReal, ChunkedParseEqualsTheLineByLineParse) {
+  std::vector<std::string> paths;
+  const std::string data = shared_data_dir();
+  if (!data.empty())
+    for (const char* f : {"/plain/armadillo.off", "/plain/elephant.off", "/plain/fandisk.off",
+                          "/colors/dino.off", "/problematic/abominevole.off"})
+      paths.push_back(data + f);
+  for (const char* name : {"bunny00.off", "mesh_with_colors.off"})
+    if (const std::string p = cgal_mesh(name); !p.empty()) paths.push_back(p);
+  if (paths.empty()) GTEST_SKIP() << "neither ../shared/data nor libcgal-demo's data present";
+  for (const std::string& path : paths) {
+    SCOPED_TRACE(path);
+    const std::string content = io_detail::read_file_bytes(path);
+    bool used = false;
+    const TriMesh chunked = detail::read_off_in_chunks(path, content, 5, 2, &used);
+    EXPECT_TRUE(used);
+    expect_same_mesh(chunked, read_off(path, content, 1));
+  }
 }
 
 }  // namespace
