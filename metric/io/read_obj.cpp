@@ -481,18 +481,7 @@ TriMesh read_obj_in_chunks(const std::string& path, std::string_view content, in
                            int threads, bool* used_chunks) {
   if (used_chunks != nullptr) *used_chunks = false;
   const std::string_view text = io_detail::strip_bom(content);
-  // Chunk starts: about equal byte ranges, each moved on to the start of a line.
-  std::vector<std::size_t> start{0};
-  for (int k = 1; k < chunks; ++k) {
-    std::size_t at = std::max(
-        start.back(), text.size() * static_cast<std::size_t>(k) / static_cast<std::size_t>(chunks));
-    if (at > 0 && at < text.size() && text[at - 1] != '\n') {
-      const std::size_t newline = text.find('\n', at);
-      at = newline == std::string_view::npos ? text.size() : newline + 1;
-    }
-    if (at > start.back() && at < text.size()) start.push_back(at);
-  }
-  start.push_back(text.size());
+  const std::vector<std::size_t> start = io_detail::line_chunks(text, 0, chunks);
   const auto n = static_cast<std::int64_t>(start.size() - 1);
   std::vector<ObjParser> parts(static_cast<std::size_t>(n), ObjParser(path, content));
   bool failed = false;

@@ -301,19 +301,7 @@ TriMesh OffParser::parse_in_chunks(int chunks, int threads, bool* used_chunks) {
   // The records' text cut at line starts; pass 1 counts each chunk's content lines, so that pass
   // 2 knows which record each chunk starts with (vertex or face, and its number).
   const std::string_view text = io_detail::strip_bom(content_);
-  const std::size_t body = lines_.offset();
-  std::vector<std::size_t> start{body};
-  for (int k = 1; k < chunks; ++k) {
-    std::size_t at =
-        std::max(start.back(), body + (text.size() - body) * static_cast<std::size_t>(k) /
-                                          static_cast<std::size_t>(chunks));
-    if (at > 0 && at < text.size() && text[at - 1] != '\n') {
-      const std::size_t newline = text.find('\n', at);
-      at = newline == std::string_view::npos ? text.size() : newline + 1;
-    }
-    if (at > start.back() && at < text.size()) start.push_back(at);
-  }
-  start.push_back(text.size());
+  const std::vector<std::size_t> start = io_detail::line_chunks(text, lines_.offset(), chunks);
   const auto n = static_cast<std::int64_t>(start.size() - 1);
   const int team = threads > 0 ? threads : omp_get_max_threads();
   std::vector<std::uint64_t> count(static_cast<std::size_t>(n), 0);

@@ -1,5 +1,7 @@
 #include "metric/io/text_scan.h"
 
+#include <algorithm>
+
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
@@ -119,6 +121,22 @@ std::string resolve_relative(const std::string& folder, std::string_view name) {
   std::filesystem::path p(n);
   if (p.is_absolute() || folder.empty()) return p.lexically_normal().string();
   return (std::filesystem::path(folder) / p).lexically_normal().string();
+}
+
+std::vector<std::size_t> line_chunks(std::string_view text, std::size_t begin, int chunks) {
+  std::vector<std::size_t> cuts{begin};
+  const std::size_t bytes = text.size() - begin;
+  for (int k = 1; k < chunks; ++k) {
+    std::size_t at = std::max(cuts.back(), begin + bytes * static_cast<std::size_t>(k) /
+                                                       static_cast<std::size_t>(chunks));
+    if (at > 0 && at < text.size() && text[at - 1] != '\n') {
+      const std::size_t newline = text.find('\n', at);
+      at = newline == std::string_view::npos ? text.size() : newline + 1;
+    }
+    if (at > cuts.back() && at < text.size()) cuts.push_back(at);
+  }
+  cuts.push_back(text.size());
+  return cuts;
 }
 
 bool LineReader::next(std::string_view& line) {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #if defined(__SANITIZE_ADDRESS__)
 #define MESHDEV_EXACT_FILE_BUFFER 1
@@ -68,6 +69,12 @@ class LineReader {
   std::size_t pos_ = 0;
   std::size_t line_ = 0;
 };
+
+// Where to cut text[begin, text.size()) into about `chunks` parts of equal bytes for parsing in
+// parallel, each cut moved on to the start of a line: the chunks' first offsets, ascending and
+// distinct, then text.size() (so chunk k is [cuts[k], cuts[k + 1])); fewer chunks where the text
+// has fewer lines. Precondition: begin <= text.size(), at a line start. O(chunks + longest line).
+std::vector<std::size_t> line_chunks(std::string_view text, std::size_t begin, int chunks);
 
 inline bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == '\n';

@@ -211,58 +211,14 @@ TEST(ReadObjReal, BuildingsLoads) {
 
 // --- The chunked parse (large files on a team) against the line-by-line parse, its oracle. ---
 
-// Everything a reader fills in, compared bit for bit.
-void expect_same_mesh(const TriMesh& got, const TriMesh& want) {
-  ASSERT_EQ(got.positions.size(), want.positions.size());
-  for (std::size_t v = 0; v < got.positions.size(); ++v)
-    for (int k = 0; k < 3; ++k) ASSERT_EQ(got.positions[v][k], want.positions[v][k]) << v;
-  EXPECT_EQ(got.faces, want.faces);
-  EXPECT_EQ(got.source_polygons, want.source_polygons);
-  EXPECT_EQ(got.source_file, want.source_file);
-  EXPECT_EQ(got.texture_file, want.texture_file);
-  ASSERT_EQ(got.channels.size(), want.channels.size());
-  for (std::size_t c = 0; c < got.channels.size(); ++c) {
-    EXPECT_EQ(got.channels[c].name, want.channels[c].name);
-    EXPECT_EQ(got.channels[c].kind, want.channels[c].kind);
-    EXPECT_EQ(got.channels[c].storage, want.channels[c].storage);
-    EXPECT_EQ(got.channels[c].dim, want.channels[c].dim);
-    EXPECT_EQ(got.channels[c].values, want.channels[c].values) << got.channels[c].name;
-  }
-}
-
-// The outcome of a parse: the mesh, or the error's message.
-struct Outcome {
-  TriMesh mesh;
-  std::string error;
-};
-template <class Parse>
-Outcome outcome_of(Parse&& parse) {
-  Outcome o;
-  try {
-    o.mesh = parse();
-  } catch (const ParseError& e) {
-    o.error = e.what();
-  }
-  return o;
-}
-
-// The chunked parse of `obj` with several chunk counts and teams gives what the line-by-line
-// parse gives, mesh or error; `chunked`: whether the chunks' result must be the one returned (a
-// valid file) rather than the line-by-line parse's (an error found in a chunk or between chunks).
-void expect_chunks_agree(const std::string& obj, bool chunked) {
+// expect_chunks_agree for OBJ text (io_test_util.h).
+void expect_obj_chunks_agree(const std::string& obj, bool chunked) {
   const std::string path = "/nonexistent/chunks.obj";  // (no mtllib here: nothing is opened)
-  const Outcome want = outcome_of([&] { return read_obj(path, obj, 1); });
-  EXPECT_EQ(want.error.empty(), chunked) << want.error;
-  for (int chunks : {2, 3, 5, 17})
-    for (int threads : {1, 2}) {
-      SCOPED_TRACE("chunks " + std::to_string(chunks) + ", threads " + std::to_string(threads));
-      bool used = false;
-      const Outcome got =
-          outcome_of([&] { return detail::read_obj_in_chunks(path, obj, chunks, threads, &used); });
-      EXPECT_EQ(got.error, want.error);
-      EXPECT_EQ(used, chunked);
-      if (want.error.empty()) expect_same_mesh(got.mesh, want.mesh);
-    }
+  expect_chunks_agree([&] { return read_obj(path, obj, 1); },
+                      [&](int chunks, int threads, bool* used) {
+                        return detail::read_obj_in_chunks(path, obj, chunks, threads, used);
+                      },
+                      chunked);
 }
 
 // An n x n grid of quads with UVs and normals (one per vertex), the faces' indices alternating
@@ -298,16 +254,16 @@ std::string grid_obj(int n, bool colors) {
 }
 
 TEST(ReadObj, ChunkedParseEqualsTheLineByLineParse) {
-  expect_chunks_agree(grid_obj(30, false), true);
-  expect_chunks_agree(grid_obj(20, true), true);
+  expect_obj_chunks_agree(grid_obj(30, false), true);
+  expect_obj_chunks_agree(grid_obj(20, true), true);
   // Vertices and faces interleaved, relative indices reaching back across chunks.
   std::string mixed;
   for (int i = 0; i < 400; ++i)
     mixed += "v " + std::to_string(i) + " 0 " + std::to_string(i % 3) + "\nv " + std::to_string(i) +
              " 1 0\nv " + std::to_string(i) + " 2 1\nf -3 -2 -1\n" + (i > 0 ? "f -4 -5 -2\n" : "");
-  expect_chunks_agree(mixed, true);
+  expect_obj_chunks_agree(mixed, true);
   // One line only, and a byte order mark.
-  expect_chunks_agree("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3", true);
+  expect_obj_chunks_agree("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3", true);
 }
 
 TEST(ReadObj, ChunkedParseReportsTheLineByLineParsesError) {
@@ -316,19 +272,19 @@ TEST(ReadObj, ChunkedParseReportsTheLineByLineParsesError) {
   std::string two_errors = grid;
   two_errors.insert(two_errors.size() / 4, "v 1 2 x\n");
   two_errors += "v 1 2 y\n";
-  expect_chunks_agree(two_errors, false);
+  expect_obj_chunks_agree(two_errors, false);
   // A relative index reaching before the first vertex, far from the start of the file.
-  expect_chunks_agree(grid + "f -1 -2 -99999\n", false);
+  expect_obj_chunks_agree(grid + "f -1 -2 -99999\n", false);
   // Colours on the first vertices only (the rule spans chunks).
-  expect_chunks_agree(grid_obj(20, true) + "v 1 2 3\n", false);
+  expect_obj_chunks_agree(grid_obj(20, true) + "v 1 2 3\n", false);
   // A face without the texture coordinates and normals of the first face.
-  expect_chunks_agree(grid + "f 1 2 3\n", false);
+  expect_obj_chunks_agree(grid + "f 1 2 3\n", false);
   // An absolute index beyond the last vertex (checked once all are read).
-  expect_chunks_agree(grid + "f 1 2 99999\n", false);
+  expect_obj_chunks_agree(grid + "f 1 2 99999\n", false);
   // No vertex at all.
   std::string faces_only;
   for (int i = 0; i < 200; ++i) faces_only += "# nothing\ng x\n";
-  expect_chunks_agree(faces_only, false);
+  expect_obj_chunks_agree(faces_only, false);
 }
 
 // The real OBJ files (textures, normals, polygons, the 400k-face buildings) read in chunks on two

@@ -122,52 +122,14 @@ TEST(ReadOffCgal, MeshWithColoursAndBunny) {
 
 // --- The chunked parse (large files on a team) against the line-by-line parse, its oracle. ---
 
-void expect_same_mesh(const TriMesh& got, const TriMesh& want) {
-  ASSERT_EQ(got.positions.size(), want.positions.size());
-  for (std::size_t v = 0; v < got.positions.size(); ++v)
-    for (int k = 0; k < 3; ++k) ASSERT_EQ(got.positions[v][k], want.positions[v][k]) << v;
-  EXPECT_EQ(got.faces, want.faces);
-  EXPECT_EQ(got.source_polygons, want.source_polygons);
-  EXPECT_EQ(got.source_file, want.source_file);
-  ASSERT_EQ(got.channels.size(), want.channels.size());
-  for (std::size_t c = 0; c < got.channels.size(); ++c) {
-    EXPECT_EQ(got.channels[c].name, want.channels[c].name);
-    EXPECT_EQ(got.channels[c].storage, want.channels[c].storage);
-    EXPECT_EQ(got.channels[c].values, want.channels[c].values) << got.channels[c].name;
-  }
-}
-
-struct Outcome {
-  TriMesh mesh;
-  std::string error;
-};
-template <class Parse>
-Outcome outcome_of(Parse&& parse) {
-  Outcome o;
-  try {
-    o.mesh = parse();
-  } catch (const ParseError& e) {
-    o.error = e.what();
-  }
-  return o;
-}
-
-// The chunked parse gives the line-by-line parse's mesh or error for several chunk counts and
-// teams; `chunked`: whether the chunks' result must be the one returned.
-void expect_chunks_agree(const std::string& off, bool chunked) {
+// expect_chunks_agree for OFF text (io_test_util.h).
+void expect_off_chunks_agree(const std::string& off, bool chunked) {
   const std::string path = "chunks.off";
-  const Outcome want = outcome_of([&] { return read_off(path, off, 1); });
-  EXPECT_EQ(want.error.empty(), chunked) << want.error;
-  for (int chunks : {2, 3, 5, 17})
-    for (int threads : {1, 2}) {
-      SCOPED_TRACE("chunks " + std::to_string(chunks) + ", threads " + std::to_string(threads));
-      bool used = false;
-      const Outcome got =
-          outcome_of([&] { return detail::read_off_in_chunks(path, off, chunks, threads, &used); });
-      EXPECT_EQ(got.error, want.error);
-      EXPECT_EQ(used, chunked);
-      if (want.error.empty()) expect_same_mesh(got.mesh, want.mesh);
-    }
+  expect_chunks_agree([&] { return read_off(path, off, 1); },
+                      [&](int chunks, int threads, bool* used) {
+                        return detail::read_off_in_chunks(path, off, chunks, threads, used);
+                      },
+                      chunked);
 }
 
 // A grid of n x n quads (some written as two triangles, some with a face colour), with comments
@@ -207,12 +169,12 @@ std::string grid_off(int n, const std::string& keyword, bool float_colors = fals
 }
 
 TEST(ReadOff, ChunkedParseEqualsTheLineByLineParse) {
-  expect_chunks_agree(grid_off(30, "OFF"), true);
-  expect_chunks_agree(grid_off(20, "COFF"), true);
-  expect_chunks_agree(grid_off(20, "COFF", true), true);
-  expect_chunks_agree(grid_off(20, "STCNOFF"), true);
+  expect_off_chunks_agree(grid_off(30, "OFF"), true);
+  expect_off_chunks_agree(grid_off(20, "COFF"), true);
+  expect_off_chunks_agree(grid_off(20, "COFF", true), true);
+  expect_off_chunks_agree(grid_off(20, "STCNOFF"), true);
   // The counts on the keyword line, a byte order mark, a single record of each kind.
-  expect_chunks_agree("\xEF\xBB\xBFOFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2", true);
+  expect_off_chunks_agree("\xEF\xBB\xBFOFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2", true);
 }
 
 TEST(ReadOff, ChunkedParseReportsTheLineByLineParsesError) {
@@ -221,14 +183,14 @@ TEST(ReadOff, ChunkedParseReportsTheLineByLineParsesError) {
   std::string two_errors = grid;
   two_errors.insert(two_errors.find("\n1 ", two_errors.size() / 3) + 1, "0 x 0\n");
   two_errors.insert(two_errors.size() - 2, " y");
-  expect_chunks_agree(two_errors, false);
+  expect_off_chunks_agree(two_errors, false);
   // One record too many, one too few (the file ends early).
-  expect_chunks_agree(grid + "3 0 1 2\n", false);
-  expect_chunks_agree(grid.substr(0, grid.rfind("\n", grid.size() - 2) + 1), false);
+  expect_off_chunks_agree(grid + "3 0 1 2\n", false);
+  expect_off_chunks_agree(grid.substr(0, grid.rfind("\n", grid.size() - 2) + 1), false);
   // An index out of range in the last face.
   std::string bad_index = grid;
   bad_index.replace(bad_index.rfind(' ') + 1, std::string::npos, "99999\n");
-  expect_chunks_agree(bad_index, false);
+  expect_off_chunks_agree(bad_index, false);
   // RGB colours up to the first vertex of the second of two chunks, RGBA from there on: each
   // chunk agrees with itself, so only the check that spans chunks finds it. Every vertex line
   // has the same length (RGB ones padded with spaces), so where the chunks are cut (about half
@@ -251,14 +213,14 @@ TEST(ReadOff, ChunkedParseReportsTheLineByLineParsesError) {
     ASSERT_LT(first_rgba, static_cast<std::size_t>(n));
     std::string mixed = header;
     for (int i = 0; i < n; ++i) mixed += vertex(i, static_cast<std::size_t>(i) >= first_rgba);
-    expect_chunks_agree(mixed + faces, false);
+    expect_off_chunks_agree(mixed + faces, false);
   }
   std::string colours = grid_off(20, "COFF");
   const std::size_t faces = colours.find("\n3 ", colours.find(" 0\n") + 3);
   const std::size_t last_vertex = colours.rfind('\n', colours.rfind('\n', faces) - 1);
   std::string over = colours;
   over.insert(colours.find('\n', last_vertex + 1), "00");  // 7 -> 700
-  expect_chunks_agree(over, false);
+  expect_off_chunks_agree(over, false);
 }
 
 // The real OFF files of ../shared/data and CGAL's data read in chunks on two threads: the

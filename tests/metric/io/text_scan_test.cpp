@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <string>
+#include <vector>
 
 #include "metric/errors.h"
 #include "metric/io/mesh_io.h"
@@ -67,6 +68,30 @@ TEST(FileBytes, MeshesFillingWholePagesAreReadToTheirLastByte) {
       EXPECT_EQ(m.positions[2].y, 1.0) << name;
     }
   }
+}
+
+// The cuts for a parallel parse are line starts, ascending and distinct, from `begin` to the end
+// of the text, about equal in bytes; a text of one line is one chunk.
+TEST(LineChunks, CutAtLineStartsIntoAboutEqualParts) {
+  std::string text = "header line\n";
+  const std::size_t begin = text.size();
+  for (int i = 0; i < 1000; ++i) text += "line " + std::to_string(i % 37) + "\n";
+  for (int chunks : {1, 2, 3, 7, 50}) {
+    SCOPED_TRACE(chunks);
+    const std::vector<std::size_t> cuts = io_detail::line_chunks(text, begin, chunks);
+    ASSERT_EQ(cuts.size(), static_cast<std::size_t>(chunks) + 1);
+    EXPECT_EQ(cuts.front(), begin);
+    EXPECT_EQ(cuts.back(), text.size());
+    const double share = static_cast<double>(text.size() - begin) / chunks;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      EXPECT_LT(cuts[k], cuts[k + 1]);
+      EXPECT_EQ(text[cuts[k] - 1], '\n') << k;
+      EXPECT_NEAR(static_cast<double>(cuts[k + 1] - cuts[k]), share, 10.0) << k;
+    }
+  }
+  EXPECT_EQ(io_detail::line_chunks("one line, no newline", 0, 4),
+            (std::vector<std::size_t>{0, 20}));
+  EXPECT_EQ(io_detail::line_chunks("a\nb\n", 0, 8), (std::vector<std::size_t>{0, 2, 4}));
 }
 
 }  // namespace
