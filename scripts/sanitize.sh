@@ -3,8 +3,8 @@
 #   1. the whole test suite built with ASan + UBSan (gcc) in build-asan;
 #   2. a short libFuzzer pass (clang, ASan + UBSan) over each fuzz target, plus its regressions;
 #   3. ThreadSanitizer (clang + LLVM libomp with its Archer tool) over the OpenMP paths and the
-#      sweep's worker threads: metric_tests Compare*:NastyMeshes* + the BVH build test,
-#      harness_tests SweepTest.*.
+#      sweep's worker threads: metric_tests Compare*:NastyMeshes*:Mesh*:VertexNormals* + the BVH
+#      build test, io_tests' chunked OBJ and OFF parses, harness_tests SweepTest.*.
 # Installs what it needs (idempotent, like scripts/quickstart.sh). Ends with "N passed, M failed"
 # over the steps and exits non-zero if a step failed. .ci/run runs `all` (30 s per fuzz target)
 # after `quickstart.sh test`; measured times in docs/robustness.md "Measured runs".
@@ -109,7 +109,8 @@ tsan() {
   cmake -S "$here" -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DMESHDEV_WITH_CGAL=OFF -DMESHDEV_BUILD_EXAMPLES=OFF \
     -DCMAKE_CXX_FLAGS="-fsanitize=thread -fno-omit-frame-pointer" >/dev/null || return 1
-  cmake --build "$build" -j "$jobs" --target metric_tests harness_tests >"$build/build.log" 2>&1 ||
+  cmake --build "$build" -j "$jobs" --target metric_tests io_tests harness_tests \
+    >"$build/build.log" 2>&1 ||
     { tail -40 "$build/build.log"; return 1; }
   # Not `ldd | grep -q`: grep -q exits at the first match, ldd then dies of SIGPIPE and pipefail
   # fails the check although libomp is there (1 run in 5 here).
@@ -117,13 +118,17 @@ tsan() {
   libs=$(ldd "$build/tests/metric/metric_tests") || return 1
   [[ $libs == *libomp.so* ]] || { echo "metric_tests is not linked with LLVM's libomp"; return 1; }
   # The metric's OpenMP loops (queries, statistics, the BVH's task-parallel build and its Morton
-  # sort, the Monte Carlo samples made as they are queried) and the
+  # sort, the Monte Carlo samples made as they are queried, the checks, summaries and vertex
+  # normals on the team), the readers' chunked parses and the
   # std::thread workers of `meshdev sweep --jobs` (SweepTest.JobsInParallelGiveTheSameRows).
   OMP_TOOL_LIBRARIES="$archer" OMP_NUM_THREADS=2 \
     TSAN_OPTIONS="halt_on_error=1:ignore_noninstrumented_modules=1" \
     "$build/tests/metric/metric_tests" \
-    --gtest_filter='Compare*:NastyMeshes*:NearestPoint.BvhIsTheSameForAnyBuildThreadCount:NearestPoint.BvhSplitsAlongAMortonCurve*:AttributeDeviation.MonteCarlo*' \
+    --gtest_filter='Compare*:NastyMeshes*:Mesh.*:VertexNormals.*:NearestPoint.BvhIsTheSameForAnyBuildThreadCount:NearestPoint.BvhSplitsAlongAMortonCurve*:AttributeDeviation.MonteCarlo*' \
     --gtest_brief=1 || return 1
+  OMP_TOOL_LIBRARIES="$archer" OMP_NUM_THREADS=2 \
+    TSAN_OPTIONS="halt_on_error=1:ignore_noninstrumented_modules=1" \
+    "$build/tests/metric/io/io_tests" --gtest_filter='Read*Chunk*' --gtest_brief=1 || return 1
   OMP_TOOL_LIBRARIES="$archer" OMP_NUM_THREADS=2 \
     TSAN_OPTIONS="halt_on_error=1:ignore_noninstrumented_modules=1" \
     "$build/tests/harness/harness_tests" --gtest_filter='SweepTest.*' --gtest_brief=1
