@@ -2,7 +2,6 @@
 
 #include <omp.h>
 
-#include <algorithm>
 #include <cassert>
 #include <filesystem>
 #include <iostream>
@@ -505,12 +504,9 @@ TriMesh read_obj_in_chunks(const std::string& path, std::string_view content, in
 }  // namespace detail
 
 TriMesh read_obj(const std::string& path, std::string_view content, int threads) {
-  const int team = threads > 0 ? threads : omp_get_max_threads();
-  if (team == 1 || content.size() < 2 * detail::kObjChunkBytes)
-    return ObjParser(path, content).parse();
-  const auto chunks = static_cast<int>(std::min<std::size_t>(
-      4 * static_cast<std::size_t>(team), content.size() / detail::kObjChunkBytes));
-  return detail::read_obj_in_chunks(path, content, chunks, team);
+  const int chunks = io_detail::chunks_for(content.size(), threads);
+  if (chunks == 1) return ObjParser(path, content).parse();
+  return detail::read_obj_in_chunks(path, content, chunks, threads);
 }
 
 }  // namespace meshdev

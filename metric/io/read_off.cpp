@@ -363,12 +363,9 @@ TriMesh OffParser::parse_in_chunks(int chunks, int threads, bool* used_chunks) {
 }  // namespace
 
 TriMesh read_off(const std::string& path, std::string_view content, int threads) {
-  const int team = threads > 0 ? threads : omp_get_max_threads();
-  if (team == 1 || content.size() < 2 * detail::kOffChunkBytes)
-    return OffParser(path, content).parse();
-  const auto chunks = static_cast<int>(std::min<std::size_t>(
-      4 * static_cast<std::size_t>(team), content.size() / detail::kOffChunkBytes));
-  return OffParser(path, content).parse_in_chunks(chunks, team, nullptr);
+  const int chunks = io_detail::chunks_for(content.size(), threads);
+  if (chunks == 1) return OffParser(path, content).parse();
+  return OffParser(path, content).parse_in_chunks(chunks, threads, nullptr);
 }
 
 namespace detail {

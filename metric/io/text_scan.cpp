@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <fcntl.h>
+#include <omp.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -137,6 +138,13 @@ std::vector<std::size_t> line_chunks(std::string_view text, std::size_t begin, i
   }
   cuts.push_back(text.size());
   return cuts;
+}
+
+int chunks_for(std::size_t bytes, int threads) {
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  if (team == 1 || bytes < 2 * kChunkBytes) return 1;
+  return static_cast<int>(
+      std::min<std::size_t>(4 * static_cast<std::size_t>(team), bytes / kChunkBytes));
 }
 
 bool LineReader::next(std::string_view& line) {

@@ -76,6 +76,14 @@ class LineReader {
 // has fewer lines. Precondition: begin <= text.size(), at a line start. O(chunks + longest line).
 std::vector<std::size_t> line_chunks(std::string_view text, std::size_t begin, int chunks);
 
+// The least bytes per chunk of the readers' chunked parses (OBJ, OFF).
+constexpr std::size_t kChunkBytes = std::size_t{1} << 19;
+
+// How many chunks a reader cuts `bytes` of text into on `threads` OpenMP threads (0: the
+// default): 1 (the line-by-line parse) on one thread or below 2 kChunkBytes, else up to 4 per
+// thread of at least kChunkBytes each.
+int chunks_for(std::size_t bytes, int threads);
+
 inline bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == '\n';
 }
