@@ -8,6 +8,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <sstream>
 
 #include "metric/errors.h"
@@ -43,6 +44,24 @@ double unit_random(std::uint64_t seed, std::uint64_t face, std::uint64_t k) {
   return unit_random_of(face_hash(seed, face), k);
 }
 
+// Scan-conversion points of a triangle whose legs AB and AC are lab and lac long, with step Δ
+// (Eq. 6): row i (s = iΔ/lab, i <= lab/Δ) holds floor((1 - s) lac / Δ) + 1 points. Every
+// operation is correctly rounded and monotone in Δ, so the count never grows as Δ grows (which
+// solve_step relies on). O(lab / Δ).
+std::size_t scan_count(double lab, double lac, double step) {
+  const std::size_t nu =
+      lab > 0.0 ? static_cast<std::size_t>(std::floor(lab / step + kGridSlack)) : 0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i <= nu; ++i) {
+    const double s = lab > 0.0 ? static_cast<double>(i) * step / lab : 0.0;
+    const double rest = 1.0 - s;
+    if (rest < 0.0) break;
+    count +=
+        (lac > 0.0 ? static_cast<std::size_t>(std::floor(rest * lac / step + kGridSlack)) : 0) + 1;
+  }
+  return count;
+}
+
 // Calls fn(s, t) for every scan-conversion point of triangle (a,b,c): barycentric weights s on
 // b and t on c (point = a + s·AB + t·AC). Row i runs along AC at s = iΔ/|AB|.
 template <class Fn>
@@ -63,39 +82,110 @@ void for_each_scan_point(const Vec3& a, const Vec3& b, const Vec3& c, double ste
   }
 }
 
-// Scan-conversion points of all faces with step Δ, or kMaxSamples + 1 once a thread's share
-// passes kMaxSamples (the rest is skipped, so a step far too small is refused quickly). Faces in
-// parallel; an integer sum, so the result does not depend on the thread count. O(F · rows).
-std::size_t scan_total(const TriMesh& m, double step, int threads) {
+// The legs |AB| and |AC| of every face (what scan_count reads), on the team.
+struct Legs {
+  double ab, ac;
+};
+std::vector<Legs> face_legs(const TriMesh& m, int threads) {
+  std::vector<Legs> legs(m.faces.size());
+  const auto faces = static_cast<std::int64_t>(m.faces.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (std::int64_t f = 0; f < faces; ++f) {
+    const Triangle& t = m.faces[f];
+    legs[f] = {norm(m.positions[t[1]] - m.positions[t[0]]),
+               norm(m.positions[t[2]] - m.positions[t[0]])};
+  }
+  return legs;
+}
+
+// Scan-conversion points of the faces listed in `faces` (all faces if null, n of them) with
+// step Δ, each face's count also written to counts[k] if counts is not null; or kMaxSamples + 1
+// once a thread's share passes kMaxSamples (the rest is skipped, so a step far too small is
+// refused quickly; counts are then incomplete). Faces in parallel; an integer sum, so the result
+// does not depend on the thread count. O(n · rows).
+std::size_t scan_total(const std::vector<Legs>& legs, const std::uint32_t* faces, std::size_t n,
+                       double step, int threads, std::uint32_t* counts = nullptr) {
   std::atomic<bool> over{false};
   std::size_t total = 0;
-  const auto faces = static_cast<std::int64_t>(m.faces.size());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : total)
-  for (std::int64_t f = 0; f < faces; ++f) {
+  for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
     if (over.load(std::memory_order_relaxed)) continue;
-    const Triangle& t = m.faces[f];
-    total += scan_conversion_count(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], step);
+    const Legs& l = legs[faces ? faces[k] : static_cast<std::size_t>(k)];
+    const std::size_t c = scan_count(l.ab, l.ac, step);
+    if (counts) counts[k] = static_cast<std::uint32_t>(std::min<std::size_t>(c, kMaxSamples + 1));
+    total += c;
     if (total > kMaxSamples) over.store(true, std::memory_order_relaxed);  // this thread's share
   }
   return over.load() ? kMaxSamples + 1 : total;
 }
 
-// Δ whose scan-conversion count is closest to `target` (bisection; the count falls as Δ grows).
-double solve_step(const TriMesh& m, std::size_t target, int threads) {
+std::size_t scan_total(const TriMesh& m, double step, int threads) {
+  return scan_total(face_legs(m, threads), nullptr, m.faces.size(), step, threads);
+}
+
+}  // namespace
+
+namespace detail {
+
+double solve_scan_step(const TriMesh& m, std::size_t target, int threads, bool settle) {
+  const std::vector<Legs> legs = face_legs(m, threads);
+  const std::size_t faces = legs.size();
   double sum = 0.0;
-  for (const Triangle& t : m.faces)
-    sum += 0.5 * norm(m.positions[t[1]] - m.positions[t[0]]) *
-           norm(m.positions[t[2]] - m.positions[t[0]]);
+  for (const Legs& l : legs) sum += 0.5 * l.ab * l.ac;
   if (!(sum > 0.0)) return 1.0;  // every face degenerate: each gets its corner only
+  // Settled faces: each face's count never grows with Δ (scan_count), so a face with the same
+  // count at lo and at hi has that count at every Δ between them, and the bisection, which only
+  // narrows [lo, hi], need not count it again. `active` lists the others, with their counts at lo
+  // and hi; `settled` sums the rest. The totals, hence every decision and the Δ found, are those
+  // of counting every face at every step (settle = false; the tests compare the two).
+  settle = settle && faces <= std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> at_lo(settle ? faces : 0), at_hi(at_lo.size()), at_mid, active;
+  auto total = [&](double step, std::vector<std::uint32_t>& counts) {
+    return scan_total(legs, nullptr, faces, step, threads, settle ? counts.data() : nullptr);
+  };
   double guess = std::sqrt(sum / static_cast<double>(target));
   double lo = guess / 4, hi = guess * 4;
-  while (scan_total(m, lo, threads) < target && lo > guess * 1e-6) lo /= 4;
-  while (scan_total(m, hi, threads) > target && hi < guess * 1e6) hi *= 4;
+  std::size_t n_lo, n_hi;  // the totals at the final lo and hi, whose counts the arrays hold
+  while ((n_lo = total(lo, at_lo)) < target && lo > guess * 1e-6) lo /= 4;
+  while ((n_hi = total(hi, at_hi)) > target && hi < guess * 1e6) hi *= 4;
+  // Counts past the limit are incomplete: count every face at every step then.
+  if (n_lo > kMaxSamples || n_hi > kMaxSamples) settle = false;
+  std::size_t settled = 0;
+  if (settle) {
+    active.resize(faces);
+    for (std::size_t f = 0; f < faces; ++f) active[f] = static_cast<std::uint32_t>(f);
+  }
+  auto keep_unsettled = [&] {
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      assert(at_lo[k] >= at_hi[k]);
+      if (at_lo[k] == at_hi[k]) {
+        settled += at_lo[k];
+        continue;
+      }
+      active[kept] = active[k];
+      at_lo[kept] = at_lo[k];
+      at_hi[kept] = at_hi[k];
+      ++kept;
+    }
+    active.resize(kept);
+    at_lo.resize(kept);
+    at_hi.resize(kept);
+  };
+  if (settle) keep_unsettled();
+
   double best = guess;
   double best_err = 1e300;
   for (int it = 0; it < 60; ++it) {
     const double mid = std::sqrt(lo * hi);
-    const std::size_t n = scan_total(m, mid, threads);
+    std::size_t n;
+    if (settle) {
+      at_mid.resize(active.size());
+      n = settled + scan_total(legs, active.data(), active.size(), mid, threads, at_mid.data());
+      assert(n <= kMaxSamples);  // between the totals at hi and lo, both within the limit
+    } else {
+      n = total(mid, at_mid);
+    }
     const double err = std::fabs(static_cast<double>(n) - static_cast<double>(target));
     if (err < best_err) {
       best_err = err;
@@ -103,9 +193,17 @@ double solve_step(const TriMesh& m, std::size_t target, int threads) {
     }
     if (err <= 0.002 * static_cast<double>(target)) break;
     (n > target ? lo : hi) = mid;
+    if (settle) {
+      (n > target ? at_lo : at_hi).swap(at_mid);
+      keep_unsettled();
+    }
   }
   return best;
 }
+
+}  // namespace detail
+
+namespace {
 
 std::string with_commas(std::size_t n) {
   std::string s = std::to_string(n);
@@ -241,18 +339,7 @@ const char* sample_kind_name(SampleKind k) {
 }
 
 std::size_t scan_conversion_count(const Vec3& a, const Vec3& b, const Vec3& c, double step) {
-  const double lab = norm(b - a), lac = norm(c - a);
-  const std::size_t nu =
-      lab > 0.0 ? static_cast<std::size_t>(std::floor(lab / step + kGridSlack)) : 0;
-  std::size_t count = 0;
-  for (std::size_t i = 0; i <= nu; ++i) {
-    const double s = lab > 0.0 ? static_cast<double>(i) * step / lab : 0.0;
-    const double rest = 1.0 - s;
-    if (rest < 0.0) break;
-    count +=
-        (lac > 0.0 ? static_cast<std::size_t>(std::floor(rest * lac / step + kGridSlack)) : 0) + 1;
-  }
-  return count;
+  return scan_count(norm(b - a), norm(c - a), step);
 }
 
 namespace {
@@ -298,7 +385,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
     if (o.step > 0.0 || o.step_fraction > 0.0)
       throw InvalidInput("the sampling step is 0 (is the mesh's bounding box a single point?)");
     if (o.faces == FaceSampling::kScanConversion || o.faces == FaceSampling::kMonteCarlo) {
-      step = solve_step(mesh, target, threads);
+      step = detail::solve_scan_step(mesh, target, threads);
     } else {  // edges alone: spread the target count over the total edge length
       double length = 0.0;
       for (const Triangle& t : mesh.faces)

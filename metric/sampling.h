@@ -133,4 +133,15 @@ void set_sample_kinds(SamplingOptions& options, const std::string& list);
 // Number of scan-conversion points on one triangle with step Δ (Eq. 6). O(|AB|/Δ).
 std::size_t scan_conversion_count(const Vec3& a, const Vec3& b, const Vec3& c, double step);
 
+namespace detail {
+// The Δ sample_surface uses for `target` scan-conversion face samples when no step is given:
+// bisection on Δ (in [guess/4, guess*4], widened by 4 until it holds the target) until the count
+// is within 0.2 % of `target`, keeping the Δ whose count came closest (60 steps at most). With
+// `settle`, faces whose count is the same at both ends of the interval are not counted again (the
+// count of a face never grows with Δ): the same totals, so the same Δ, bit for bit, as without
+// (the twin the tests compare it with). Counts on `threads`. O(F) per step without `settle`; with
+// it, O(F) for the first steps, then the faces still changing (docs/metric.md "Sampling").
+double solve_scan_step(const TriMesh& mesh, std::size_t target, int threads, bool settle = true);
+}  // namespace detail
+
 }  // namespace meshdev

@@ -4,11 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
 #include "metric/errors.h"
+#include "metric/io/mesh_io.h"
 #include "tests/support/shapes.h"
+#include "tests/support/test_data.h"
 
 namespace meshdev {
 namespace {
@@ -93,6 +96,51 @@ TEST(Sampling, TargetCountIsMetWithinOnePercent) {
   o.target_count = 50000;
   SampleSet set = sample_surface(m, o, 2.0);
   EXPECT_NEAR(static_cast<double>(set.face_count), 50000.0, 500.0);
+}
+
+// A face's scan-conversion count never grows with Δ (detail::solve_scan_step relies on it), in
+// floating point too: every operation of the count is correctly rounded and monotone in Δ.
+// Random triangles, steps swept finely across each one's row and column boundaries.
+TEST(Sampling, ScanConversionCountNeverGrowsWithTheStep) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)}, c{u(rng), u(rng), u(rng)};
+    std::size_t before = std::numeric_limits<std::size_t>::max();
+    for (double step = 0.02; step < 2.0; step *= 1.0 + 1e-3) {
+      const std::size_t n = scan_conversion_count(a, b, c, step);
+      ASSERT_LE(n, before) << "triangle " << k << ", step " << step;
+      before = n;
+    }
+  }
+}
+
+// Settling faces whose count no longer changes gives the Δ of counting every face at every
+// step, bit for bit, on any team: on meshes of even faces, random soups with slivers and
+// degenerate faces, and targets from a few samples per face to thousands.
+TEST(Sampling, SolvedStepIsTheSameWithSettledFacesSkipped) {
+  const TriMesh meshes[] = {test::icosphere(3), test::grid(30), test::random_soup(3000, 7, 0.2),
+                            test::random_soup(500, 8, 0.0)};
+  for (const TriMesh& m : meshes)
+    for (const std::size_t per_face : {1, 3, 10, 100, 2000}) {
+      const std::size_t target = per_face * m.num_faces();
+      const double plain = detail::solve_scan_step(m, target, 1, false);
+      for (int threads : {1, 2, 3}) {
+        const double settled = detail::solve_scan_step(m, target, threads, true);
+        EXPECT_EQ(settled, plain) << m.num_faces() << " faces, target " << target << ", " << threads
+                                  << " threads";
+      }
+    }
+}
+
+// The same on a real scan (libcgal-demo's bunny, 144k faces with Debian's package).
+TEST(Sampling, SolvedStepIsTheSameWithSettledFacesSkippedOnARealScan) {
+  const std::string path = test::cgal_mesh("bunny00.off");
+  if (path.empty()) GTEST_SKIP() << "libcgal-demo is not installed (no CGAL data archive)";
+  const TriMesh m = read_mesh(path);
+  for (const std::size_t per_face : {2, 10})
+    EXPECT_EQ(detail::solve_scan_step(m, per_face * m.num_faces(), 2, true),
+              detail::solve_scan_step(m, per_face * m.num_faces(), 1, false));
 }
 
 TEST(Sampling, MonteCarloDependsOnlyOnTheSeed) {
