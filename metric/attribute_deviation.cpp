@@ -345,16 +345,22 @@ struct ChunkSamples {
   const Sample& operator[](std::size_t j) const { return visit ? base[visit[j]] : base[j]; }
 };
 
+// Samples made on demand by a MonteCarloSamples or a SampleSequence.
+template <class Source>
 struct GeneratedSamples {
-  const MonteCarloSamples& mc;
-  std::size_t size() const { return mc.size(); }
-  Sample at(std::size_t i) const { return mc.at(i); }
+  const Source& source;
+  std::size_t size() const { return source.size(); }
+  Sample at(std::size_t i) const { return source.at(i); }
   const Sample* chunk(std::size_t begin, std::size_t count, std::vector<Sample>& scratch) const {
     scratch.resize(count);
-    mc.generate(begin, count, scratch.data());
+    source.generate(begin, count, scratch.data());
     return scratch.data();
   }
 };
+template <class T>
+constexpr bool kIsGenerated = false;
+template <class Source>
+constexpr bool kIsGenerated<GeneratedSamples<Source>> = true;
 
 }  // namespace
 
@@ -376,7 +382,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
                                const PreparedMesh& target, const NearestPointIndex& index,
                                const std::vector<Measure>& measures,
                                const DeviationOptions& options) {
-  constexpr bool kGenerated = std::is_same_v<Samples, GeneratedSamples>;
+  constexpr bool kGenerated = kIsGenerated<Samples>;
   assert(!measures.empty() && measures[0].kind == MeasureKind::kGeometry);
   const std::size_t n = samples.size();
   SampleDeviations out;
@@ -446,7 +452,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     if constexpr (kGenerated) {  // made in chunks, the samples could not be visited in cells
       SampleSet set;
       set.samples.resize(n);
-      samples.mc.generate_all(set.samples.data(), threads);
+      samples.source.generate_all(set.samples.data(), threads);
       return compute_deviations(set, reference, target, index, measures, options);
     } else {
       std::vector<std::uint32_t> bucket(n);
@@ -708,7 +714,17 @@ SampleDeviations compute_deviations(const MonteCarloSamples& samples, const Prep
                                     const std::vector<Measure>& measures,
                                     const DeviationOptions& options) {
   assert(&samples.mesh() == reference.mesh);
-  return deviations_of(GeneratedSamples{samples}, reference, target, index, measures, options);
+  return deviations_of(GeneratedSamples<MonteCarloSamples>{samples}, reference, target, index,
+                       measures, options);
+}
+
+SampleDeviations compute_deviations(const SampleSequence& samples, const PreparedMesh& reference,
+                                    const PreparedMesh& target, const NearestPointIndex& index,
+                                    const std::vector<Measure>& measures,
+                                    const DeviationOptions& options) {
+  assert(&samples.mesh() == reference.mesh);
+  return deviations_of(GeneratedSamples<SampleSequence>{samples}, reference, target, index,
+                       measures, options);
 }
 
 }  // namespace meshdev

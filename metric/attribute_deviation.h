@@ -76,4 +76,13 @@ SampleDeviations compute_deviations(const MonteCarloSamples& samples, const Prep
                                     const std::vector<Measure>& measures,
                                     const DeviationOptions& options = {});
 
+// The same for any samples a SampleSequence makes (vertices and scan-conversion or Monte Carlo
+// face samples, as compare_meshes samples by default): the result, bit for bit, of
+// compute_deviations on the SampleSet sample_surface stores for the same options. `samples.mesh()`
+// must be `reference`'s mesh. O(as above).
+SampleDeviations compute_deviations(const SampleSequence& samples, const PreparedMesh& reference,
+                                    const PreparedMesh& target, const NearestPointIndex& index,
+                                    const std::vector<Measure>& measures,
+                                    const DeviationOptions& options = {});
+
 }  // namespace meshdev

@@ -30,17 +30,19 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
                                        ? " (use --direction forward to sample it only)"
                                        : ""));
 
-  // Monte Carlo face samples alone, where no per-sample output is kept, are made a chunk at a
-  // time as they are queried instead of stored (72 bytes each): the same samples and results.
+  // Samples without edge samples (the default vertices and scan conversion, Monte Carlo), where
+  // no per-sample output is kept, are made a chunk at a time as they are queried instead of
+  // stored (72 bytes each): the same samples and results.
   auto t0 = Clock::now();
-  std::optional<MonteCarloSamples> generated;
+  std::optional<SampleSequence> generated;
   SampleSet samples;
   double equal_weight = 0.0;
-  if (!o.keep_samples && monte_carlo_only(sampling)) {
-    generated.emplace(monte_carlo_samples(*from.mesh, sampling));
+  if (!o.keep_samples && sequence_sampling(sampling)) {
+    generated.emplace(*from.mesh, sampling, diagonal);
     r.sampling = generated->description();
+    r.step = generated->step();
     r.samples = generated->size();
-    equal_weight = generated->weight();
+    equal_weight = generated->equal_weight();
   } else {
     samples = sample_surface(*from.mesh, sampling, diagonal);
     r.sampling = samples.description;
@@ -82,12 +84,15 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   if (equal_weight > 0.0) {
     r.stats = compute_statistics_of_each(values, equal_weight, o.histogram_bins, o.threads);
   } else {
-    assert(!generated);
-    const auto n = static_cast<std::int64_t>(samples.samples.size());
-    std::vector<double> weights(samples.samples.size());
+    std::vector<double> weights(r.samples);
+    if (generated) {
+      generated->weights(weights.data(), o.threads);
+    } else {
+      const auto n = static_cast<std::int64_t>(samples.samples.size());
 #pragma omp parallel for num_threads(o.threads > 0 ? o.threads : omp_get_max_threads()) \
     schedule(static)
-    for (std::int64_t i = 0; i < n; ++i) weights[i] = samples.samples[i].weight;
+      for (std::int64_t i = 0; i < n; ++i) weights[i] = samples.samples[i].weight;
+    }
     r.stats = compute_statistics_of_each(values, weights, o.histogram_bins, o.threads);
   }
   for (std::size_t m = 0; m < measures.size(); ++m) {

@@ -212,29 +212,63 @@ std::string with_commas(std::size_t n) {
   return s;
 }
 
-void add_vertex_samples(const TriMesh& m, SampleSet& set) {
-  // The first face (lowest index) using each vertex, and the corner it sits in.
-  std::vector<std::uint32_t> face_of(m.positions.size(), kNoFace);
-  std::vector<std::uint8_t> corner_of(m.positions.size(), 0);
+// SampleSet::description of a set with these counts, sampled as `o` says with step Δ.
+std::string describe(std::size_t vertex_count, std::size_t edge_count, std::size_t face_count,
+                     const SamplingOptions& o, double step) {
+  std::ostringstream d;
+  const char* sep = "";
+  if (vertex_count > 0 || o.vertices) {
+    d << with_commas(vertex_count) << " vertices";
+    sep = " + ";
+  }
+  if (o.edges) {
+    d << sep << with_commas(edge_count) << " edge points";
+    sep = " + ";
+  }
+  if (o.faces == FaceSampling::kScanConversion)
+    d << sep << with_commas(face_count) << " face points (scan conversion, step " << step << ")";
+  if (o.faces == FaceSampling::kMonteCarlo)
+    d << sep << with_commas(face_count) << " face points (Monte Carlo, seed " << o.seed << ")";
+  return d.str();
+}
+
+// The first face (lowest index) using each vertex (kNoFace: none), and the vertex's corner in it.
+struct FirstFaces {
+  std::vector<std::uint32_t> face;
+  std::vector<std::uint8_t> corner;
+};
+FirstFaces first_faces(const TriMesh& m) {
+  FirstFaces first{std::vector<std::uint32_t>(m.positions.size(), kNoFace),
+                   std::vector<std::uint8_t>(m.positions.size(), 0)};
   for (std::uint32_t f = 0; f < m.faces.size(); ++f)
     for (std::uint8_t c = 0; c < 3; ++c) {
       const std::uint32_t v = m.faces[f][c];
-      if (face_of[v] == kNoFace) {
-        face_of[v] = f;
-        corner_of[v] = c;
+      if (first.face[v] == kNoFace) {
+        first.face[v] = f;
+        first.corner[v] = c;
       }
     }
+  return first;
+}
+
+// The sample of vertex v, which sits in corner `corner` of face `face`.
+Sample vertex_sample(const TriMesh& m, std::uint32_t v, std::uint32_t face, std::uint8_t corner) {
+  Sample s;
+  s.point = m.positions[v];
+  s.vertex = v;
+  s.face = face;
+  s.bary = {0, 0, 0};
+  s.bary[corner] = 1.0;
+  s.kind = SampleKind::kVertex;
+  return s;
+}
+
+void add_vertex_samples(const TriMesh& m, SampleSet& set) {
+  const FirstFaces first = first_faces(m);
   const bool point_cloud = m.faces.empty();
   for (std::uint32_t v = 0; v < m.positions.size(); ++v) {
-    if (!point_cloud && face_of[v] == kNoFace) continue;  // unreferenced
-    Sample s;
-    s.point = m.positions[v];
-    s.vertex = v;
-    s.face = face_of[v];
-    s.bary = {0, 0, 0};
-    s.bary[corner_of[v]] = 1.0;
-    s.kind = SampleKind::kVertex;
-    set.samples.push_back(s);
+    if (!point_cloud && first.face[v] == kNoFace) continue;  // unreferenced
+    set.samples.push_back(vertex_sample(m, v, first.face[v], first.corner[v]));
     ++set.vertex_count;
   }
 }
@@ -434,22 +468,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   if (one_kind && (set.vertex_count > 0 || o.faces == FaceSampling::kMonteCarlo))
     set.equal_weight = set.samples.front().weight;  // vertices weigh 1; Monte Carlo area / count
 
-  std::ostringstream d;
-  const char* sep = "";
-  if (set.vertex_count > 0 || o.vertices) {
-    d << with_commas(set.vertex_count) << " vertices";
-    sep = " + ";
-  }
-  if (o.edges) {
-    d << sep << with_commas(set.edge_count) << " edge points";
-    sep = " + ";
-  }
-  if (o.faces == FaceSampling::kScanConversion)
-    d << sep << with_commas(set.face_count) << " face points (scan conversion, step " << step
-      << ")";
-  if (o.faces == FaceSampling::kMonteCarlo)
-    d << sep << with_commas(set.face_count) << " face points (Monte Carlo, seed " << o.seed << ")";
-  set.description = d.str();
+  set.description = describe(set.vertex_count, set.edge_count, set.face_count, o, step);
   return set;
 }
 
@@ -538,6 +557,146 @@ std::string MonteCarloSamples::description() const {
   std::ostringstream d;
   d << with_commas(size()) << " face points (Monte Carlo, seed " << seed_ << ")";
   return d.str();
+}
+
+SampleSequence::SampleSequence(const TriMesh& mesh, const SamplingOptions& o, double diagonal)
+    : mesh_(&mesh), faces_(o.faces) {
+  assert(sequence_sampling(o));
+  check_options(mesh, o);
+  const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
+  const std::size_t target = face_target(mesh, o);
+  // The step and the errors of sample_surface, in its order.
+  double step = o.step > 0.0 ? o.step : o.step_fraction * diagonal;
+  if (o.faces == FaceSampling::kScanConversion) {
+    if (!(step > 0.0)) {
+      if (o.step > 0.0 || o.step_fraction > 0.0)
+        throw InvalidInput("the sampling step is 0 (is the mesh's bounding box a single point?)");
+      step = detail::solve_scan_step(mesh, target, threads);
+    }
+    // Each face's count, then their offsets; a step far too small is refused as quickly as
+    // sample_surface refuses it.
+    std::vector<std::uint32_t> counts(mesh.faces.size());
+    if (scan_total(face_legs(mesh, threads), nullptr, mesh.faces.size(), step, threads,
+                   counts.data()) > kMaxSamples)
+      throw InvalidInput("the sampling step " + std::to_string(step) +
+                         " would create more than 2^31 samples; use a larger step");
+    first_.resize(mesh.faces.size() + 1);
+    first_[0] = 0;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) first_[f + 1] = first_[f] + counts[f];
+    face_count_ = first_.back();
+    step_ = step;
+  }
+  if (o.vertices) {
+    const FirstFaces first = first_faces(mesh);
+    const bool point_cloud = mesh.faces.empty();
+    for (std::uint32_t v = 0; v < mesh.positions.size(); ++v)
+      if (point_cloud || first.face[v] != kNoFace)
+        vertices_.push_back({v, first.face[v], first.corner[v]});
+  }
+  if (o.faces == FaceSampling::kMonteCarlo) {
+    monte_carlo_.emplace(mesh, target, o.seed, threads);
+    face_count_ = monte_carlo_->size();
+  }
+  // sample_surface's weights: with face samples, vertex samples only hunt the maximum.
+  vertex_weight_ = face_count_ > 0 ? 0.0 : 1.0;
+  if (vertices_.empty() != (face_count_ == 0) && (!vertices_.empty() || monte_carlo_))
+    equal_weight_ = vertices_.empty() ? monte_carlo_->weight() : vertex_weight_;
+  description_ = describe(vertices_.size(), 0, face_count_, o, step);
+}
+
+void SampleSequence::generate(std::size_t begin, std::size_t count, Sample* out) const {
+  assert(begin + count <= size());
+  std::size_t j = 0;
+  for (; j < count && begin + j < vertices_.size(); ++j) {
+    const VertexRef& v = vertices_[begin + j];
+    ::new (static_cast<void*>(out + j)) Sample(vertex_sample(*mesh_, v.vertex, v.face, v.corner));
+    out[j].weight = vertex_weight_;
+  }
+  if (j == count) return;
+  const std::size_t from = begin + j - vertices_.size();
+  if (monte_carlo_)
+    monte_carlo_->generate(from, count - j, out + j);
+  else
+    generate_scan(from, count - j, out + j);
+}
+
+// Face samples [begin, begin + count) of the scan conversion: add_scan_samples' points, weights
+// and order (for_each_scan_point, entered at the range's first point; the tests compare the two).
+void SampleSequence::generate_scan(std::size_t begin, std::size_t count, Sample* out) const {
+  assert(begin + count <= face_count_);
+  auto face = static_cast<std::uint32_t>(std::upper_bound(first_.begin(), first_.end(), begin) -
+                                         first_.begin() - 1);
+  std::size_t k = begin - first_[face];  // the point of the face to place next
+  for (std::size_t j = 0; j < count;) {
+    while (first_[face] + k == first_[face + 1]) {
+      ++face;
+      k = 0;
+    }
+    const Triangle& tri = mesh_->faces[face];
+    const Vec3 &a = mesh_->positions[tri[0]], &b = mesh_->positions[tri[1]],
+               &c = mesh_->positions[tri[2]];
+    const double w = face_area(*mesh_, face) / static_cast<double>(first_[face + 1] - first_[face]);
+    const double lab = norm(b - a), lac = norm(c - a);
+    const std::size_t nu =
+        lab > 0.0 ? static_cast<std::size_t>(std::floor(lab / step_ + kGridSlack)) : 0;
+    std::size_t row_first =
+        0;  // the face's point that starts row i (k >= it: rows before k skipped)
+    for (std::size_t i = 0; i <= nu && j < count; ++i) {
+      const double s = lab > 0.0 ? static_cast<double>(i) * step_ / lab : 0.0;
+      const double rest = 1.0 - s;
+      if (rest < 0.0) break;
+      const std::size_t nv =
+          lac > 0.0 ? static_cast<std::size_t>(std::floor(rest * lac / step_ + kGridSlack)) : 0;
+      const std::size_t row_end = row_first + nv + 1;
+      for (std::size_t col = k - row_first; k < row_end && j < count; ++col, ++k, ++j) {
+        const double t = std::min(lac > 0.0 ? static_cast<double>(col) * step_ / lac : 0.0, rest);
+        ::new (static_cast<void*>(out + j))
+            Sample{a + s * (b - a) + t * (c - a), face, kNoFace,
+                   {1.0 - s - t, s, t},           w,    SampleKind::kFace};
+      }
+      row_first = row_end;
+    }
+    assert(j == count || k == first_[face + 1] - first_[face]);
+  }
+}
+
+void SampleSequence::generate_all(Sample* out, int threads) const {
+  const std::size_t n = size();
+  const auto runs = static_cast<std::int64_t>((n + kGenerateRun - 1) / kGenerateRun);
+#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) \
+    schedule(dynamic, 1)
+  for (std::int64_t r = 0; r < runs; ++r) {
+    const std::size_t begin = static_cast<std::size_t>(r) * kGenerateRun;
+    generate(begin, std::min(kGenerateRun, n - begin), out + begin);
+  }
+}
+
+Sample SampleSequence::at(std::size_t i) const {
+  Sample s;
+  generate(i, 1, &s);
+  return s;
+}
+
+void SampleSequence::weights(double* out, int threads) const {
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  const std::size_t nv = vertices_.size();
+  std::fill(out, out + nv, vertex_weight_);
+  if (monte_carlo_) {
+    std::fill(out + nv, out + nv + face_count_, monte_carlo_->weight());
+    return;
+  }
+  const auto faces = static_cast<std::int64_t>(first_.empty() ? 0 : first_.size() - 1);
+#pragma omp parallel for num_threads(team) schedule(static)
+  for (std::int64_t f = 0; f < faces; ++f) {
+    const std::size_t n = first_[f + 1] - first_[f];
+    if (n == 0) continue;
+    std::fill(out + nv + first_[f], out + nv + first_[f + 1],
+              face_area(*mesh_, static_cast<std::size_t>(f)) / static_cast<double>(n));
+  }
+}
+
+bool sequence_sampling(const SamplingOptions& o) {
+  return !o.edges;
 }
 
 void set_sample_kinds(SamplingOptions& o, const std::string& list) {

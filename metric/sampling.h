@@ -17,6 +17,7 @@
 // samples 1 when alone.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,10 +78,11 @@ struct SampleSet {
 // The Monte Carlo face samples of a mesh (FaceSampling::kMonteCarlo: face f gets
 // floor(N·area_f/area + u_f) area-uniform points) as a sequence that makes any range of them on
 // demand: exactly the samples, in the same order, that sample_surface gives for Monte Carlo face
-// sampling alone, which makes them through this class. compare_meshes streams them through
-// compute_deviations a chunk at a time instead of storing the set (72 bytes per sample, which a
-// 1M-sample direction first had to fault in: docs/performance.md §3, thirteenth session).
-// `mesh` must outlive it. Holds one offset per face (8 bytes); the samples weigh weight() each.
+// sampling alone, which makes them through this class. compare_meshes streams them (through
+// SampleSequence, below) to compute_deviations a chunk at a time instead of storing the set (72
+// bytes per sample, which a 1M-sample direction first had to fault in: docs/performance.md §3,
+// thirteenth session). `mesh` must outlive it. Holds one offset per face (8 bytes); the samples
+// weigh weight() each.
 class MonteCarloSamples {
  public:
   // Counts every face's samples for `target` samples in all and `seed` (the counts on `threads`;
@@ -109,6 +111,57 @@ class MonteCarloSamples {
   double weight_ = 0;
   std::vector<std::size_t> first_;  // first_[f]: the first sample of face f; first_[F] = size()
 };
+
+// The samples sample_surface(mesh, options, diagonal) gives for options without edge samples
+// (vertices, scan-conversion or Monte Carlo face samples, alone or together), made on demand:
+// the same samples, weights and order, bit for bit, without storing them (72 bytes per sample,
+// which a direction had to fault in: 300 MB for the 4.2M default samples of buildings.ply).
+// compare_meshes streams them through compute_deviations a chunk at a time. Holds 12 bytes per
+// referenced vertex and 8 per face. `mesh` must outlive it.
+class SampleSequence {
+ public:
+  // Throws InvalidInput as sample_surface does. Precondition: !options.edges (sequence_sampling).
+  // O(F + V) on options.threads, plus the step search where the step is solved for a count.
+  SampleSequence(const TriMesh& mesh, const SamplingOptions& options, double diagonal);
+
+  std::size_t size() const { return vertices_.size() + face_count_; }
+  std::size_t vertex_count() const { return vertices_.size(); }
+  std::size_t face_count() const { return face_count_; }
+  double step() const { return step_; }                  // as SampleSet::step
+  double equal_weight() const { return equal_weight_; }  // as SampleSet::equal_weight
+  const std::string& description() const { return description_; }
+  const TriMesh& mesh() const { return *mesh_; }
+
+  // Samples [begin, begin + count) into out[0, count) (raw storage allowed). Precondition:
+  // begin + count <= size(). O(count + log F + the rows of the first face).
+  void generate(std::size_t begin, std::size_t count, Sample* out) const;
+  // Every sample into out[0, size()), on `threads` (0 = OpenMP's default). O(size() + F).
+  void generate_all(Sample* out, int threads) const;
+  // Sample i. O(log F + rows of its face).
+  Sample at(std::size_t i) const;
+  // Every sample's weight (Sample::weight) into out[0, size()), on `threads`. O(size() + F).
+  void weights(double* out, int threads) const;
+
+ private:
+  struct VertexRef {
+    std::uint32_t vertex, face;  // face: the lowest face using the vertex (kNoFace: point cloud)
+    std::uint8_t corner;         // the vertex's corner in that face
+  };
+  void generate_scan(std::size_t begin, std::size_t count, Sample* out) const;
+
+  const TriMesh* mesh_;
+  std::vector<VertexRef> vertices_;
+  double vertex_weight_ = 1;  // 0 where there are face samples
+  FaceSampling faces_ = FaceSampling::kNone;
+  std::optional<MonteCarloSamples> monte_carlo_;  // for Monte Carlo face samples
+  std::vector<std::size_t> first_;  // scan conversion: face f's first face sample; [F]: count
+  std::size_t face_count_ = 0;
+  double step_ = 0, equal_weight_ = 0;
+  std::string description_;
+};
+
+// Whether `options` asks for samples SampleSequence can make (no edge samples). O(1).
+bool sequence_sampling(const SamplingOptions& options);
 
 // Samples `mesh` as `options` says. `diagonal` scales step_fraction (pass the reference mesh's
 // bbox diagonal so both directions of a comparison use the same absolute Δ). Throws InvalidInput

@@ -179,11 +179,12 @@ TEST(AttributeDeviation, InlinePerVertexChannelsEqualTheBruteForceOracle) {
   }
 }
 
-// Monte Carlo samples made a chunk at a time as they are queried give the results of the stored
-// set, bit for bit: on a mesh whose faces are stored along the surface (queried in chunks of
+// Samples made a chunk at a time as they are queried give the results of the stored set, bit for
+// bit: Monte Carlo samples (MonteCarloSamples) and the default vertices and scan conversion
+// (SampleSequence), on a mesh whose faces are stored along the surface (queried in chunks of
 // their own order), and on the same mesh with its faces shuffled, whose samples call for the
 // coarse cell order and are then stored first (cell_order in both).
-TEST(AttributeDeviation, MonteCarloSamplesMadeAsTheyAreQueriedGiveTheStoredSetsResults) {
+TEST(AttributeDeviation, SamplesMadeAsTheyAreQueriedGiveTheStoredSetsResults) {
   TriMesh shuffled_grid = test::grid(40, 1.0, 0.1);  // 3,200 faces, about 2 samples each
   std::shuffle(shuffled_grid.faces.begin(), shuffled_grid.faces.end(), std::mt19937_64(4));
   const TriMesh b = with_channels(test::grid(6, 1.0, 0.0), 2);
@@ -191,33 +192,41 @@ TEST(AttributeDeviation, MonteCarloSamplesMadeAsTheyAreQueriedGiveTheStoredSetsR
     SCOPED_TRACE(shuffle ? "faces shuffled" : "faces in grid order");
     const TriMesh a = with_channels(shuffle ? shuffled_grid : test::grid(40, 1.0, 0.1), 1);
     const AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
+    const auto bvh = make_nearest_point_index(b, IndexKind::kBvh);
+    DeviationOptions options;
+    options.threads = 2;
+    auto expect_same = [&](const SampleDeviations& x, const SampleDeviations& y) {
+      EXPECT_EQ(x.cell_order, shuffle);
+      EXPECT_EQ(y.cell_order, shuffle);
+      ASSERT_EQ(x.values.size(), y.values.size());
+      for (std::size_t m = 0; m < x.values.size(); ++m)
+        EXPECT_TRUE(x.values[m] == y.values[m]) << plan.measures[m].name;
+      EXPECT_TRUE(x.tie_count == y.tie_count);
+      EXPECT_TRUE(x.nearest_feature == y.nearest_feature);
+      ASSERT_EQ(x.nearest.size(), y.nearest.size());
+      for (std::size_t i = 0; i < x.nearest.size(); ++i) {
+        ASSERT_EQ(x.nearest[i].face, y.nearest[i].face) << "sample " << i;
+        ASSERT_EQ(x.nearest[i].point, y.nearest[i].point) << "sample " << i;
+      }
+    };
     SamplingOptions so;
     so.vertices = false;
     so.faces = FaceSampling::kMonteCarlo;
     so.target_count = 6000;
     so.threads = 2;
     const SampleSet stored = sample_surface(a, so, 1.0);
-    const MonteCarloSamples made = monte_carlo_samples(a, so);
     ASSERT_GT(stored.samples.size(), 4 * 1024u);
-    const auto bvh = make_nearest_point_index(b, IndexKind::kBvh);
-    DeviationOptions options;
-    options.threads = 2;
-    const SampleDeviations x =
-        compute_deviations(stored, plan.a, plan.b, *bvh, plan.measures, options);
-    const SampleDeviations y =
-        compute_deviations(made, plan.a, plan.b, *bvh, plan.measures, options);
-    EXPECT_EQ(x.cell_order, shuffle);
-    EXPECT_EQ(y.cell_order, shuffle);
-    ASSERT_EQ(x.values.size(), y.values.size());
-    for (std::size_t m = 0; m < x.values.size(); ++m)
-      EXPECT_TRUE(x.values[m] == y.values[m]) << plan.measures[m].name;
-    EXPECT_TRUE(x.tie_count == y.tie_count);
-    EXPECT_TRUE(x.nearest_feature == y.nearest_feature);
-    ASSERT_EQ(x.nearest.size(), y.nearest.size());
-    for (std::size_t i = 0; i < x.nearest.size(); ++i) {
-      ASSERT_EQ(x.nearest[i].face, y.nearest[i].face) << "sample " << i;
-      ASSERT_EQ(x.nearest[i].point, y.nearest[i].point) << "sample " << i;
-    }
+    expect_same(compute_deviations(stored, plan.a, plan.b, *bvh, plan.measures, options),
+                compute_deviations(monte_carlo_samples(a, so), plan.a, plan.b, *bvh, plan.measures,
+                                   options));
+    SamplingOptions scan;  // the default kinds: vertices and scan conversion
+    scan.target_count = 6000;
+    scan.threads = 2;
+    const SampleSet stored_scan = sample_surface(a, scan, 1.0);
+    ASSERT_GT(stored_scan.samples.size(), 4 * 1024u);
+    expect_same(compute_deviations(stored_scan, plan.a, plan.b, *bvh, plan.measures, options),
+                compute_deviations(SampleSequence(a, scan, 1.0), plan.a, plan.b, *bvh,
+                                   plan.measures, options));
   }
 }
 

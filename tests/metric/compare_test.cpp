@@ -203,23 +203,13 @@ TEST(Compare, OneThreadEqualsTwoThreads) {
   }
 }
 
-// Monte Carlo samples alone are made as they are queried where no per-sample output is kept,
-// and stored where it is (keep_samples): the same statistics and maximum locations either way.
-TEST(Compare, MonteCarloSamplesMadeAsQueriedEqualStoredOnes) {
-  TriMesh a = test::icosphere(3), b = test::translated(test::icosphere(2), {0.01, 0, 0});
-  CompareOptions o;
-  o.sampling.vertices = false;
-  o.sampling.faces = FaceSampling::kMonteCarlo;
-  o.sampling.target_count = 30000;
-  o.threads = 2;
-  const ComparisonResult made = compare_meshes(a, b, o);
-  o.keep_samples = true;
-  const ComparisonResult stored = compare_meshes(a, b, o);
-  ASSERT_FALSE(stored.forward->sample_set.samples.empty());
+// Both directions of two comparisons of the same meshes give the same numbers, bit for bit.
+void expect_same_directions(const ComparisonResult& made, const ComparisonResult& stored) {
   for (const auto& [x, y] : {std::pair{&*made.forward, &*stored.forward},
                              std::pair{&*made.backward, &*stored.backward}}) {
     EXPECT_EQ(x->samples, y->samples);
     EXPECT_EQ(x->sampling, y->sampling);
+    EXPECT_EQ(x->step, y->step);
     EXPECT_EQ(x->nearest_feature, y->nearest_feature);
     EXPECT_EQ(x->samples_with_ties, y->samples_with_ties);
     for (std::size_t m = 0; m < made.measures.size(); ++m) {
@@ -234,6 +224,27 @@ TEST(Compare, MonteCarloSamplesMadeAsQueriedEqualStoredOnes) {
       EXPECT_EQ(x->max_location[m].nearest, y->max_location[m].nearest);
       EXPECT_EQ(x->max_location[m].nearest_face, y->max_location[m].nearest_face);
     }
+  }
+}
+
+// Samples without edges (Monte Carlo alone, the default vertices and scan conversion, scan
+// conversion with a step, vertices alone) are made as they are queried where no per-sample output
+// is kept, and stored where it is (keep_samples): the same statistics and maximum locations
+// either way.
+TEST(Compare, SamplesMadeAsQueriedEqualStoredOnes) {
+  TriMesh a = test::icosphere(3), b = test::translated(test::icosphere(2), {0.01, 0, 0});
+  for (const char* kinds : {"montecarlo", "vertices,faces", "faces", "vertices"}) {
+    SCOPED_TRACE(kinds);
+    CompareOptions o;
+    set_sample_kinds(o.sampling, kinds);
+    o.sampling.target_count = 30000;
+    if (std::string(kinds) == "faces") o.sampling.step_fraction = 0.004;
+    o.threads = 2;
+    const ComparisonResult made = compare_meshes(a, b, o);
+    o.keep_samples = true;
+    const ComparisonResult stored = compare_meshes(a, b, o);
+    ASSERT_FALSE(stored.forward->sample_set.samples.empty());
+    expect_same_directions(made, stored);
   }
 }
 

@@ -204,6 +204,98 @@ TEST(Sampling, MonteCarloSamplesMakeTheStoredSetInAnyRange) {
   EXPECT_FALSE(monte_carlo_only(o));
 }
 
+// SampleSequence makes, for any range and on any team, exactly the samples, weights and order
+// sample_surface stores, for every sampling without edges: vertices, scan conversion (solved for a
+// count, or with a step given) and Monte Carlo, alone and together; on a soup with degenerate
+// faces (a zero-area face still gets its corner; Monte Carlo gives it none), a sphere and a
+// point cloud. Ranges start and end inside faces, inside rows and across the vertex part's end.
+TEST(Sampling, SampleSequenceMakesTheStoredSetInAnyRange) {
+  TriMesh cloud;
+  cloud.positions = {{0, 0, 0}, {1, 2, 3}, {-1, 0.5, 2}};
+  const TriMesh meshes[] = {test::random_soup(400, 5, 0.2), test::icosphere(2), cloud};
+  auto expect_same = [](const Sample& x, const Sample& y, std::size_t i) {
+    ASSERT_EQ(x.point, y.point) << "sample " << i;
+    ASSERT_EQ(x.face, y.face) << "sample " << i;
+    ASSERT_EQ(x.vertex, y.vertex) << "sample " << i;
+    ASSERT_EQ(x.bary, y.bary) << "sample " << i;
+    ASSERT_EQ(x.weight, y.weight) << "sample " << i;
+    ASSERT_EQ(x.kind, y.kind) << "sample " << i;
+  };
+  std::mt19937_64 rng(11);
+  int checked = 0;
+  for (const TriMesh& m : meshes)
+    for (const bool vertices : {true, false})
+      for (const FaceSampling faces :
+           {FaceSampling::kNone, FaceSampling::kScanConversion, FaceSampling::kMonteCarlo})
+        for (const double step : {0.0, 0.05}) {
+          if (!vertices && faces == FaceSampling::kNone) continue;
+          if (m.faces.empty() && faces != FaceSampling::kNone) continue;
+          SamplingOptions o;
+          o.vertices = vertices;
+          o.faces = faces;
+          o.step = step;
+          o.target_count = 5000;
+          o.seed = 3;
+          o.threads = 2;
+          SCOPED_TRACE(std::to_string(m.num_faces()) + " faces, vertices " +
+                       std::to_string(vertices) + ", faces " +
+                       std::to_string(static_cast<int>(faces)) + ", step " + std::to_string(step));
+          ASSERT_TRUE(sequence_sampling(o));
+          const SampleSet set = sample_surface(m, o, 1.0);
+          const SampleSequence seq(m, o, 1.0);
+          ASSERT_EQ(seq.size(), set.samples.size());
+          ASSERT_GT(seq.size(), 0u);
+          EXPECT_EQ(seq.vertex_count(), set.vertex_count);
+          EXPECT_EQ(seq.face_count(), set.face_count);
+          EXPECT_EQ(seq.step(), set.step);
+          EXPECT_EQ(seq.equal_weight(), set.equal_weight);
+          EXPECT_EQ(seq.description(), set.description);
+          for (std::size_t i = 0; i < set.samples.size(); ++i)
+            expect_same(seq.at(i), set.samples[i], i);
+          std::vector<Sample> out;
+          for (int trial = 0; trial < 100; ++trial) {
+            const std::size_t begin = rng() % seq.size();
+            const std::size_t count = rng() % std::min<std::size_t>(seq.size() - begin, 300);
+            out.assign(count + 1, Sample{});
+            seq.generate(begin, count, out.data());
+            for (std::size_t j = 0; j < count; ++j)
+              expect_same(out[j], set.samples[begin + j], begin + j);
+            ASSERT_EQ(out[count].face, kNoFace);  // nothing written past the range
+          }
+          for (int threads : {1, 3}) {
+            std::vector<Sample> all(seq.size());
+            seq.generate_all(all.data(), threads);
+            for (std::size_t i = 0; i < all.size(); ++i) expect_same(all[i], set.samples[i], i);
+            std::vector<double> weights(seq.size(), -1.0);
+            seq.weights(weights.data(), threads);
+            for (std::size_t i = 0; i < weights.size(); ++i)
+              ASSERT_EQ(weights[i], set.samples[i].weight) << "sample " << i;
+          }
+          ++checked;
+        }
+  EXPECT_EQ(checked, 2 * (5 + 5) + 2);  // every combination above was compared
+  SamplingOptions o;
+  o.edges = true;
+  EXPECT_FALSE(sequence_sampling(o));
+}
+
+// SampleSequence refuses what sample_surface refuses, with the same errors.
+TEST(Sampling, SampleSequenceRefusesWhatTheStoredSamplingRefuses) {
+  const TriMesh m = test::grid(40);
+  SamplingOptions o;
+  o.step = 1e-9;  // more than 2^31 samples
+  EXPECT_THROW(SampleSequence(m, o, 1.0), InvalidInput);
+  TriMesh cloud;
+  cloud.positions = {{0, 0, 0}};
+  o.step = 0.1;
+  EXPECT_THROW(SampleSequence(cloud, o, 1.0), InvalidInput);  // faces of a point cloud
+  o.step = 0;
+  o.step_fraction = 0.01;
+  TriMesh point = test::square();
+  for (Vec3& p : point.positions) p = {1, 1, 1};
+  EXPECT_THROW(SampleSequence(point, o, 0.0), InvalidInput);  // a step of 0
+}
+
 // A mesh of zero area has no Monte Carlo samples, stored or made.
 TEST(Sampling, MonteCarloSamplesOfAZeroAreaMeshAreNone) {
   TriMesh m;
