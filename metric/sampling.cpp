@@ -45,19 +45,25 @@ double unit_random(std::uint64_t seed, std::uint64_t face, std::uint64_t k) {
 }
 
 // Scan-conversion points of a triangle whose legs AB and AC are lab and lac long, with step Δ
-// (Eq. 6): row i (s = iΔ/lab, i <= lab/Δ) holds floor((1 - s) lac / Δ) + 1 points. Every
-// operation is correctly rounded and monotone in Δ, so the count never grows as Δ grows (which
-// solve_step relies on). O(lab / Δ).
-std::size_t scan_count(double lab, double lac, double step) {
-  const std::size_t nu =
-      lab > 0.0 ? static_cast<std::size_t>(std::floor(lab / step + kGridSlack)) : 0;
+// (Eq. 6): row i (s = iΔ/lab, i <= lab/Δ) holds floor((1 - s) lac / Δ) + 1 points; or limit + 1
+// as soon as they are more than `limit` (a needle 1e100 long on a mesh of unit faces would
+// otherwise be counted for ever: found by fuzz_nearest_point). Every operation is correctly
+// rounded and monotone in Δ, so the count never grows as Δ grows (which detail::solve_scan_step
+// relies on; the cap keeps that). O(min(lab / Δ, limit)).
+std::size_t scan_count(double lab, double lac, double step, std::size_t limit = kMaxSamples) {
+  const auto over = static_cast<double>(limit);
+  const double rows = lab > 0.0 ? std::floor(lab / step + kGridSlack) : 0.0;
+  if (!(rows <= over)) return limit + 1;
+  const auto nu = static_cast<std::size_t>(rows);
   std::size_t count = 0;
   for (std::size_t i = 0; i <= nu; ++i) {
     const double s = lab > 0.0 ? static_cast<double>(i) * step / lab : 0.0;
     const double rest = 1.0 - s;
     if (rest < 0.0) break;
-    count +=
-        (lac > 0.0 ? static_cast<std::size_t>(std::floor(rest * lac / step + kGridSlack)) : 0) + 1;
+    const double columns = lac > 0.0 ? std::floor(rest * lac / step + kGridSlack) : 0.0;
+    if (!(columns <= over)) return limit + 1;
+    count += static_cast<std::size_t>(columns) + 1;
+    if (count > limit) return limit + 1;
   }
   return count;
 }
@@ -99,24 +105,26 @@ std::vector<Legs> face_legs(const TriMesh& m, int threads) {
 }
 
 // Scan-conversion points of the faces listed in `faces` (all faces if null, n of them) with
-// step Δ, each face's count also written to counts[k] if counts is not null; or kMaxSamples + 1
-// once a thread's share passes kMaxSamples (the rest is skipped, so a step far too small is
-// refused quickly; counts are then incomplete). Faces in parallel; an integer sum, so the result
-// does not depend on the thread count. O(n · rows).
+// step Δ, each face's count also written to counts[k] if counts is not null; or limit + 1 once a
+// thread's share passes `limit` (the rest is skipped, so a step far too small is refused
+// quickly; counts are then incomplete; a face's own count stops at limit + 1). Faces in
+// parallel; an integer sum, so the result does not depend on the thread count. O(n · rows).
 std::size_t scan_total(const std::vector<Legs>& legs, const std::uint32_t* faces, std::size_t n,
-                       double step, int threads, std::uint32_t* counts = nullptr) {
+                       double step, int threads, std::uint32_t* counts = nullptr,
+                       std::size_t limit = kMaxSamples) {
+  assert(limit <= kMaxSamples);  // counts fit 32 bits
   std::atomic<bool> over{false};
   std::size_t total = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : total)
   for (std::int64_t k = 0; k < static_cast<std::int64_t>(n); ++k) {
     if (over.load(std::memory_order_relaxed)) continue;
     const Legs& l = legs[faces ? faces[k] : static_cast<std::size_t>(k)];
-    const std::size_t c = scan_count(l.ab, l.ac, step);
-    if (counts) counts[k] = static_cast<std::uint32_t>(std::min<std::size_t>(c, kMaxSamples + 1));
+    const std::size_t c = scan_count(l.ab, l.ac, step, limit);
+    if (counts) counts[k] = static_cast<std::uint32_t>(c);
     total += c;
-    if (total > kMaxSamples) over.store(true, std::memory_order_relaxed);  // this thread's share
+    if (total > limit) over.store(true, std::memory_order_relaxed);  // this thread's share
   }
-  return over.load() ? kMaxSamples + 1 : total;
+  return over.load() ? limit + 1 : total;
 }
 
 std::size_t scan_total(const TriMesh& m, double step, int threads) {
@@ -140,8 +148,15 @@ double solve_scan_step(const TriMesh& m, std::size_t target, int threads, bool s
   // of counting every face at every step (settle = false; the tests compare the two).
   settle = settle && faces <= std::numeric_limits<std::uint32_t>::max();
   std::vector<std::uint32_t> at_lo(settle ? faces : 0), at_hi(at_lo.size()), at_mid, active;
+  // Totals are counted up to `limit` only: far above the target, beyond any total between the
+  // first bracket's ends on a mesh of ordinary faces (16 times the target from the area term, at
+  // most about as much again from the rows' ends, and a corner per face), so the search takes
+  // the same steps as counting them in full; a needle far longer than the other faces, whose
+  // count at the bracket's ends is out of proportion with its area, is not counted to the end.
+  const std::size_t limit =
+      std::min<std::size_t>(kMaxSamples, 64 * std::min(target, kMaxSamples) + 4 * faces + 1024);
   auto total = [&](double step, std::vector<std::uint32_t>& counts) {
-    return scan_total(legs, nullptr, faces, step, threads, settle ? counts.data() : nullptr);
+    return scan_total(legs, nullptr, faces, step, threads, settle ? counts.data() : nullptr, limit);
   };
   double guess = std::sqrt(sum / static_cast<double>(target));
   double lo = guess / 4, hi = guess * 4;
@@ -149,7 +164,7 @@ double solve_scan_step(const TriMesh& m, std::size_t target, int threads, bool s
   while ((n_lo = total(lo, at_lo)) < target && lo > guess * 1e-6) lo /= 4;
   while ((n_hi = total(hi, at_hi)) > target && hi < guess * 1e6) hi *= 4;
   // Counts past the limit are incomplete: count every face at every step then.
-  if (n_lo > kMaxSamples || n_hi > kMaxSamples) settle = false;
+  if (n_lo > limit || n_hi > limit) settle = false;
   std::size_t settled = 0;
   if (settle) {
     active.resize(faces);
@@ -176,20 +191,23 @@ double solve_scan_step(const TriMesh& m, std::size_t target, int threads, bool s
 
   double best = guess;
   double best_err = 1e300;
+  bool best_counted = false;  // whether the best step's total was within the limit
   for (int it = 0; it < 60; ++it) {
     const double mid = std::sqrt(lo * hi);
     std::size_t n;
     if (settle) {
       at_mid.resize(active.size());
-      n = settled + scan_total(legs, active.data(), active.size(), mid, threads, at_mid.data());
-      assert(n <= kMaxSamples);  // between the totals at hi and lo, both within the limit
+      n = settled +
+          scan_total(legs, active.data(), active.size(), mid, threads, at_mid.data(), limit);
+      assert(n <= limit);  // between the totals at hi and lo, both within the limit
     } else {
       n = total(mid, at_mid);
     }
     const double err = std::fabs(static_cast<double>(n) - static_cast<double>(target));
-    if (err < best_err) {
+    if (err < best_err) {  // a count within the limit is nearer than any past it
       best_err = err;
       best = mid;
+      best_counted = n <= limit;
     }
     if (err <= 0.002 * static_cast<double>(target)) break;
     (n > target ? lo : hi) = mid;
@@ -198,6 +216,12 @@ double solve_scan_step(const TriMesh& m, std::size_t target, int threads, bool s
       keep_unsettled();
     }
   }
+  if (!best_counted)
+    throw InvalidInput("no scan-conversion step gives about " + std::to_string(target) +
+                       " face samples on this mesh: every step tried gives more than " +
+                       std::to_string(limit) +
+                       " (faces of very different sizes, e.g. a needle far longer than the "
+                       "others); give the step, or sample by Monte Carlo");
   return best;
 }
 
@@ -494,6 +518,12 @@ MonteCarloSamples::MonteCarloSamples(const TriMesh& mesh, std::size_t target, st
   double total = 0.0;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) total += area_at(f);
   assert(faces == 0 || total == surface_area(mesh));
+  // Faces wider than about 1e77 overflow their area (its squared cross product), and the counts
+  // below would be inf / inf (found by fuzz_nearest_point).
+  if (std::isinf(total))
+    throw InvalidInput(
+        "Monte Carlo sampling needs a finite surface area, and this mesh's overflows double "
+        "(faces wider than about 1e77): scale the mesh, or sample by scan conversion");
   if (!(total > 0.0) || target == 0) {
     std::fill(first_.begin(), first_.end(), 0);
     return;
@@ -560,7 +590,7 @@ std::string MonteCarloSamples::description() const {
 }
 
 SampleSequence::SampleSequence(const TriMesh& mesh, const SamplingOptions& o, double diagonal)
-    : mesh_(&mesh), faces_(o.faces) {
+    : mesh_(&mesh) {
   assert(sequence_sampling(o));
   check_options(mesh, o);
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();

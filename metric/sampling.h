@@ -86,7 +86,8 @@ struct SampleSet {
 class MonteCarloSamples {
  public:
   // Counts every face's samples for `target` samples in all and `seed` (the counts on `threads`;
-  // the same for any count). A mesh of zero area has none. O(F).
+  // the same for any count). A mesh of zero area has none; throws InvalidInput where the area
+  // overflows double. O(F).
   MonteCarloSamples(const TriMesh& mesh, std::size_t target, std::uint64_t seed, int threads);
 
   std::size_t size() const { return first_.back(); }  // N ± a few (rounding per face)
@@ -151,8 +152,7 @@ class SampleSequence {
 
   const TriMesh* mesh_;
   std::vector<VertexRef> vertices_;
-  double vertex_weight_ = 1;  // 0 where there are face samples
-  FaceSampling faces_ = FaceSampling::kNone;
+  double vertex_weight_ = 1;                      // 0 where there are face samples
   std::optional<MonteCarloSamples> monte_carlo_;  // for Monte Carlo face samples
   std::vector<std::size_t> first_;  // scan conversion: face f's first face sample; [F]: count
   std::size_t face_count_ = 0;
@@ -183,7 +183,8 @@ MonteCarloSamples monte_carlo_samples(const TriMesh& mesh, const SamplingOptions
 // InvalidInput for an unknown kind. O(length of the list).
 void set_sample_kinds(SamplingOptions& options, const std::string& list);
 
-// Number of scan-conversion points on one triangle with step Δ (Eq. 6). O(|AB|/Δ).
+// Number of scan-conversion points on one triangle with step Δ (Eq. 6), or 2^31 + 1 once it is
+// more than 2^31 (the most sample_surface makes). O(min(|AB|/Δ, 2^31)).
 std::size_t scan_conversion_count(const Vec3& a, const Vec3& b, const Vec3& c, double step);
 
 namespace detail {
@@ -193,7 +194,9 @@ namespace detail {
 // `settle`, faces whose count is the same at both ends of the interval are not counted again (the
 // count of a face never grows with Δ): the same totals, so the same Δ, bit for bit, as without
 // (the twin the tests compare it with). Counts on `threads`. O(F) per step without `settle`; with
-// it, O(F) for the first steps, then the faces still changing (docs/metric.md "Sampling").
+// it, O(F) for the first steps, then the faces still changing (docs/metric.md, Complexity).
+// Totals far past the target (64 x target + 4 F + 1024) are not counted to the end; throws
+// InvalidInput if every step tried gave such a total (a needle far longer than the other faces).
 double solve_scan_step(const TriMesh& mesh, std::size_t target, int threads, bool settle = true);
 }  // namespace detail
 

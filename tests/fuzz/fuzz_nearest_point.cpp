@@ -1,7 +1,8 @@
 // libFuzzer target: bytes -> a small valid-but-weird mesh (degenerate, duplicate, non-manifold
 // triangles, extreme coordinates) and query points -> the BVH, the grid and the brute-force
 // oracle, one query at a time and as a batch (find_batch). They must return bit-identical
-// distances and tie sets, and nothing may be NaN.
+// distances and tie sets, and nothing may be NaN. The mesh's samples made on demand
+// (SampleSequence) must be the stored ones (sample_surface), bit for bit, or both refused.
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -9,7 +10,9 @@
 #include <memory>
 #include <vector>
 
+#include "metric/errors.h"
 #include "metric/nearest_point.h"
+#include "metric/sampling.h"
 #include "tests/fuzz/fuzz_input.h"
 
 namespace {
@@ -31,6 +34,51 @@ void check_hits(const std::vector<SurfaceHit>& hits, double distance) {
     require(std::isfinite(h.point.x) && std::isfinite(h.point.y) && std::isfinite(h.point.z),
             "nearest point not finite");
     for (double b : h.bary) require(std::isfinite(b), "barycentric not finite");
+  }
+}
+
+bool same_sample(const meshdev::Sample& x, const meshdev::Sample& y) {
+  return x.point == y.point && x.face == y.face && x.vertex == y.vertex && x.bary == y.bary &&
+         x.weight == y.weight && x.kind == y.kind;
+}
+
+// SampleSequence against sample_surface for the mesh's default and Monte Carlo sampling, alone
+// and with vertices; a small target count, so that the step search stays short.
+void check_samples(const meshdev::TriMesh& mesh, std::uint8_t seed) {
+  for (const char* kinds : {"vertices,faces", "faces", "montecarlo", "vertices,montecarlo"}) {
+    meshdev::SamplingOptions o;
+    meshdev::set_sample_kinds(o, kinds);
+    o.target_count = 16 + seed % 200;
+    o.seed = seed;
+    o.threads = 1;
+    const double diagonal = meshdev::bounding_box(mesh).diagonal();
+    meshdev::SampleSet set;
+    bool stored_refused = false, made_refused = false;
+    try {
+      set = meshdev::sample_surface(mesh, o, diagonal);
+    } catch (const meshdev::InvalidInput&) {
+      stored_refused = true;
+    }
+    std::unique_ptr<meshdev::SampleSequence> made;
+    try {
+      made = std::make_unique<meshdev::SampleSequence>(mesh, o, diagonal);
+    } catch (const meshdev::InvalidInput&) {
+      made_refused = true;
+    }
+    require(stored_refused == made_refused,
+            "SampleSequence and sample_surface disagree on refusing");
+    if (stored_refused) continue;
+    require(made->size() == set.samples.size(), "SampleSequence makes a different sample count");
+    require(made->equal_weight() == set.equal_weight && made->step() == set.step,
+            "SampleSequence and sample_surface disagree on the weight or the step");
+    std::vector<meshdev::Sample> all(made->size());
+    made->generate_all(all.data(), 1);
+    std::vector<double> weights(made->size());
+    made->weights(weights.data(), 1);
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      require(same_sample(all[i], set.samples[i]), "SampleSequence makes a different sample");
+      require(weights[i] == set.samples[i].weight, "SampleSequence gives a different weight");
+    }
   }
 }
 
@@ -103,5 +151,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(batch.distance[i] == df, "BVH batch and brute force disagree on the distance");
     require(same(hb, hf), "BVH batch and brute force disagree on the ties");
   }
+  check_samples(mesh, size > 0 ? data[0] : 0);
   return 0;
 }

@@ -379,6 +379,56 @@ TEST(Sampling, AStepFarTooSmallIsRefusedAsSoonAsTheCountPassesTheLimit) {
   }
 }
 
+// A needle far longer than the mesh's other faces is not counted to the end while the step is
+// searched (found by fuzz_nearest_point: a needle of 1e100 made the count loop for ever; a
+// regression shows as a test timeout). A needle 1e12 long on unit faces: no step the search may
+// try gives about the target (every one gives more than 64 times it), which is refused with a
+// clear error, stored or made on demand, as is a step given that makes more than 2^31 samples.
+// A needle 1e4 long only shares the count: the step found is the plain search's.
+TEST(Sampling, ANeedleIsNotCountedToTheEndWhileTheStepIsSearched) {
+  auto with_needle = [](double length) {
+    TriMesh m = test::grid(10);
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.push_back({0, 0, 1});
+    m.positions.push_back({length, 0, 1});
+    m.positions.push_back({0, 1e-30, 1});
+    m.faces.push_back({base, base + 1, base + 2});
+    return m;
+  };
+  SamplingOptions o;
+  o.target_count = 500;
+  o.threads = 2;
+  const TriMesh far = with_needle(1e12);
+  EXPECT_THROW(sample_surface(far, o, 1.0), InvalidInput);
+  EXPECT_THROW(SampleSequence(far, o, 1.0), InvalidInput);
+  o.step = 1.0;  // 1e12 samples on the needle alone
+  EXPECT_THROW(sample_surface(far, o, 1.0), InvalidInput);
+  EXPECT_THROW(SampleSequence(far, o, 1.0), InvalidInput);
+  o.step = 0.0;
+  const TriMesh near = with_needle(1e4);
+  const SampleSet set = sample_surface(near, o, 1.0);
+  EXPECT_EQ(set.step, detail::solve_scan_step(near, 500, 1, false));
+  EXPECT_NEAR(static_cast<double>(set.face_count), 500.0, 1.0 + 0.002 * 500);
+  EXPECT_EQ(SampleSequence(near, o, 1.0).size(), set.samples.size());
+}
+
+// Monte Carlo sampling of a mesh whose area overflows double (a face 1e100 wide: its squared cross
+// product overflows) is refused with a clear error, stored or made on demand, where the counts
+// were inf / inf, cast to an integer (found by fuzz_nearest_point under UBSan).
+TEST(Sampling, MonteCarloRefusesAnAreaThatOverflows) {
+  TriMesh m = test::square(1e100);
+  SamplingOptions o;
+  o.vertices = false;
+  o.faces = FaceSampling::kMonteCarlo;
+  o.target_count = 100;
+  ASSERT_TRUE(std::isinf(surface_area(m)));
+  EXPECT_THROW(sample_surface(m, o, 1.0), InvalidInput);
+  EXPECT_THROW(SampleSequence(m, o, 1.0), InvalidInput);
+  EXPECT_THROW(monte_carlo_samples(m, o), InvalidInput);
+  m = test::square(1e50);  // area 1e100: finite, sampled
+  EXPECT_NEAR(static_cast<double>(sample_surface(m, o, 1.0).samples.size()), 100.0, 2.0);
+}
+
 TEST(Sampling, EdgeSamplesCoverEveryEdgeOnce) {
   TriMesh m = test::tetrahedron();
   SamplingOptions o;
