@@ -256,6 +256,20 @@ std::string describe(std::size_t vertex_count, std::size_t edge_count, std::size
   return d.str();
 }
 
+// Every sample of `source` (a MonteCarloSamples or a SampleSequence) into out[0, size()), runs of
+// kGenerateRun on `threads` (0 = OpenMP's default): each run placed by the thread that makes it.
+template <class Source>
+void generate_in_runs(const Source& source, Sample* out, int threads) {
+  const std::size_t n = source.size();
+  const auto runs = static_cast<std::int64_t>((n + kGenerateRun - 1) / kGenerateRun);
+#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) \
+    schedule(dynamic, 1)
+  for (std::int64_t r = 0; r < runs; ++r) {
+    const std::size_t begin = static_cast<std::size_t>(r) * kGenerateRun;
+    source.generate(begin, std::min(kGenerateRun, n - begin), out + begin);
+  }
+}
+
 // The first face (lowest index) using each vertex (kNoFace: none), and the vertex's corner in it.
 struct FirstFaces {
   std::vector<std::uint32_t> face;
@@ -567,14 +581,7 @@ void MonteCarloSamples::generate(std::size_t begin, std::size_t count, Sample* o
 }
 
 void MonteCarloSamples::generate_all(Sample* out, int threads) const {
-  const std::size_t n = size();
-  const auto runs = static_cast<std::int64_t>((n + kGenerateRun - 1) / kGenerateRun);
-#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) \
-    schedule(dynamic, 1)
-  for (std::int64_t r = 0; r < runs; ++r) {
-    const std::size_t begin = static_cast<std::size_t>(r) * kGenerateRun;
-    generate(begin, std::min(kGenerateRun, n - begin), out + begin);
-  }
+  generate_in_runs(*this, out, threads);
 }
 
 Sample MonteCarloSamples::at(std::size_t i) const {
@@ -691,14 +698,7 @@ void SampleSequence::generate_scan(std::size_t begin, std::size_t count, Sample*
 }
 
 void SampleSequence::generate_all(Sample* out, int threads) const {
-  const std::size_t n = size();
-  const auto runs = static_cast<std::int64_t>((n + kGenerateRun - 1) / kGenerateRun);
-#pragma omp parallel for num_threads(threads > 0 ? threads : omp_get_max_threads()) \
-    schedule(dynamic, 1)
-  for (std::int64_t r = 0; r < runs; ++r) {
-    const std::size_t begin = static_cast<std::size_t>(r) * kGenerateRun;
-    generate(begin, std::min(kGenerateRun, n - begin), out + begin);
-  }
+  generate_in_runs(*this, out, threads);
 }
 
 Sample SampleSequence::at(std::size_t i) const {

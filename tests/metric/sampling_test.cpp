@@ -16,6 +16,16 @@
 namespace meshdev {
 namespace {
 
+// Sample i made on demand (x) is the stored one (y), field by field, bit for bit.
+void expect_same_sample(const Sample& x, const Sample& y, std::size_t i) {
+  ASSERT_EQ(x.point, y.point) << "sample " << i;
+  ASSERT_EQ(x.face, y.face) << "sample " << i;
+  ASSERT_EQ(x.vertex, y.vertex) << "sample " << i;
+  ASSERT_EQ(x.bary, y.bary) << "sample " << i;
+  ASSERT_EQ(x.weight, y.weight) << "sample " << i;
+  ASSERT_EQ(x.kind, y.kind) << "sample " << i;
+}
+
 // Eq. 5-6 on the right triangle with legs 1: points (iΔ, jΔ) with i + j <= 1/Δ.
 TEST(Sampling, ScanConversionCountFollowsEquationSix) {
   const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
@@ -177,15 +187,8 @@ TEST(Sampling, MonteCarloSamplesMakeTheStoredSetInAnyRange) {
   ASSERT_EQ(mc.size(), set.samples.size());
   EXPECT_EQ(mc.weight(), set.equal_weight);
   EXPECT_EQ(mc.description(), set.description);
-  auto expect_same = [](const Sample& x, const Sample& y, std::size_t i) {
-    ASSERT_EQ(x.point, y.point) << "sample " << i;
-    ASSERT_EQ(x.face, y.face) << "sample " << i;
-    ASSERT_EQ(x.vertex, y.vertex) << "sample " << i;
-    ASSERT_EQ(x.bary, y.bary) << "sample " << i;
-    ASSERT_EQ(x.weight, y.weight) << "sample " << i;
-    ASSERT_EQ(x.kind, y.kind) << "sample " << i;
-  };
-  for (std::size_t i = 0; i < set.samples.size(); ++i) expect_same(mc.at(i), set.samples[i], i);
+  for (std::size_t i = 0; i < set.samples.size(); ++i)
+    expect_same_sample(mc.at(i), set.samples[i], i);
   std::mt19937_64 rng(9);
   std::vector<Sample> out;
   for (int trial = 0; trial < 200; ++trial) {
@@ -193,7 +196,8 @@ TEST(Sampling, MonteCarloSamplesMakeTheStoredSetInAnyRange) {
     const std::size_t count = rng() % std::min<std::size_t>(mc.size() - begin, 300);
     out.assign(count + 1, Sample{});
     mc.generate(begin, count, out.data());
-    for (std::size_t j = 0; j < count; ++j) expect_same(out[j], set.samples[begin + j], begin + j);
+    for (std::size_t j = 0; j < count; ++j)
+      expect_same_sample(out[j], set.samples[begin + j], begin + j);
     ASSERT_EQ(out[count].face, kNoFace);  // nothing written past the range
   }
   // Options with vertices or edges are not Monte Carlo alone.
@@ -213,14 +217,6 @@ TEST(Sampling, SampleSequenceMakesTheStoredSetInAnyRange) {
   TriMesh cloud;
   cloud.positions = {{0, 0, 0}, {1, 2, 3}, {-1, 0.5, 2}};
   const TriMesh meshes[] = {test::random_soup(400, 5, 0.2), test::icosphere(2), cloud};
-  auto expect_same = [](const Sample& x, const Sample& y, std::size_t i) {
-    ASSERT_EQ(x.point, y.point) << "sample " << i;
-    ASSERT_EQ(x.face, y.face) << "sample " << i;
-    ASSERT_EQ(x.vertex, y.vertex) << "sample " << i;
-    ASSERT_EQ(x.bary, y.bary) << "sample " << i;
-    ASSERT_EQ(x.weight, y.weight) << "sample " << i;
-    ASSERT_EQ(x.kind, y.kind) << "sample " << i;
-  };
   std::mt19937_64 rng(11);
   int checked = 0;
   for (const TriMesh& m : meshes)
@@ -251,7 +247,7 @@ TEST(Sampling, SampleSequenceMakesTheStoredSetInAnyRange) {
           EXPECT_EQ(seq.equal_weight(), set.equal_weight);
           EXPECT_EQ(seq.description(), set.description);
           for (std::size_t i = 0; i < set.samples.size(); ++i)
-            expect_same(seq.at(i), set.samples[i], i);
+            expect_same_sample(seq.at(i), set.samples[i], i);
           std::vector<Sample> out;
           for (int trial = 0; trial < 100; ++trial) {
             const std::size_t begin = rng() % seq.size();
@@ -259,13 +255,14 @@ TEST(Sampling, SampleSequenceMakesTheStoredSetInAnyRange) {
             out.assign(count + 1, Sample{});
             seq.generate(begin, count, out.data());
             for (std::size_t j = 0; j < count; ++j)
-              expect_same(out[j], set.samples[begin + j], begin + j);
+              expect_same_sample(out[j], set.samples[begin + j], begin + j);
             ASSERT_EQ(out[count].face, kNoFace);  // nothing written past the range
           }
           for (int threads : {1, 3}) {
             std::vector<Sample> all(seq.size());
             seq.generate_all(all.data(), threads);
-            for (std::size_t i = 0; i < all.size(); ++i) expect_same(all[i], set.samples[i], i);
+            for (std::size_t i = 0; i < all.size(); ++i)
+              expect_same_sample(all[i], set.samples[i], i);
             std::vector<double> weights(seq.size(), -1.0);
             seq.weights(weights.data(), threads);
             for (std::size_t i = 0; i < weights.size(); ++i)
