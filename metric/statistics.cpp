@@ -6,7 +6,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <memory>
 #include <numeric>
 #include <utility>
@@ -335,7 +334,7 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
   for (int b = 0; b <= bins; ++b) h.edges[b] = lo + (hi - lo) * b / bins;
   h.counts.assign(nbins, 0);
   QuantileBins quantile_bins(n, s.min, s.max, area_weighted);
-  static_assert(std::numeric_limits<std::uint16_t>::max() >= 65535, "a quantile bin in 16 bits");
+  // Each sample's quantile bin, for sum_weights (at most 65,536 bins: a bin number fits 16 bits).
   std::unique_ptr<std::uint16_t[]> bin_at(area_weighted && team > 1 ? new std::uint16_t[n]
                                                                     : nullptr);
   std::vector<CompensatedSum> var_part(static_cast<std::size_t>(blocks));
