@@ -375,8 +375,8 @@ QueryHint sample_hint(const TriMesh& reference, const Sample& s) {
 
 namespace {
 
-// compute_deviations over `samples` (StoredSamples or GeneratedSamples). Generated samples whose
-// order calls for the cell order below are stored first and the set is queried instead.
+// compute_deviations over `samples` (StoredSamples or GeneratedSamples; only stored sets are
+// ever queried in the cell order below).
 template <class Samples>
 SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& reference,
                                const PreparedMesh& target, const NearestPointIndex& index,
@@ -419,10 +419,12 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   // took 2-6 ms for torus1m's 1M faces, 2-6 % of torus1m -> 100k's 2-thread query phase, the
   // vertices' 0.4-0.8 ms: docs/performance.md §3.)
   const BoundingBox sample_box = position_bounding_box(ref, threads);
-  // Sets of more than one chunk whose order is not spatially coherent are first put in order of
-  // their coarse Morton cells (a stable counting sort): samples generated face by face are near
-  // each other only if the faces are (a mesh whose faces are stored in no spatial order), and a
-  // chunk cut from the bucket order covers a few cells, which its own Morton order then walks.
+  // Stored sets of more than one chunk whose order is not spatially coherent are first put in
+  // order of their coarse Morton cells (a stable counting sort): a chunk cut from the bucket
+  // order covers a few cells, which its own Morton order then walks. The samplers' sets
+  // (sample_surface, and the samples made as they are queried) come along a Morton curve whatever
+  // the order of the mesh's faces (metric/sampling.h) and are never reordered; sets made or
+  // permuted elsewhere (a caller's, peer_compare's) may need it.
   // Where the order is coherent (faces stored along the surface, as most meshes store them) the
   // bucket order only costs: the samples and their results are then read and written out of
   // order (`meshdev compare` forward queries, 1M Monte Carlo samples, the cell order for every
@@ -448,13 +450,8 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     return 3 * apart > pairs;
   };
   constexpr std::size_t kDense = 8;
-  if (n > kChunk && n >= kDense * tgt.faces.size() && probe_incoherent()) {
-    if constexpr (kGenerated) {  // made in chunks, the samples could not be visited in cells
-      SampleSet set;
-      set.samples.resize(n);
-      samples.source.generate_all(set.samples.data(), threads);
-      return compute_deviations(set, reference, target, index, measures, options);
-    } else {
+  if constexpr (!kGenerated) {
+    if (n > kChunk && n >= kDense * tgt.faces.size() && probe_incoherent()) {
       std::vector<std::uint32_t> bucket(n);
 #pragma omp parallel for num_threads(threads) schedule(static)
       for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i)

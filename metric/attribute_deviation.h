@@ -42,8 +42,9 @@ struct SampleDeviations {
                                        // (only with DeviationOptions::keep_nearest)
   PerSample<Feature> nearest_feature;  // per sample: where that point lies on its face
   PerSample<std::uint32_t> tie_count;  // per sample: number of equidistant target faces
-  // Whether the samples were queried in the order of their coarse Morton cells (their own order
-  // was not spatially coherent) rather than in chunks of their own order. Speed only.
+  // Whether the samples were queried in the order of their coarse Morton cells (a stored set
+  // whose own order was not spatially coherent, e.g. shuffled) rather than in chunks of their own
+  // order. Speed only; the samplers' sets come along a curve and never need it.
   bool cell_order = false;
   // Only when Cohen's texture deviation is measured (see metric/texture_deviation.h):
   std::vector<std::uint8_t> cohen_case;  // per sample: a CohenCase
@@ -69,8 +70,9 @@ SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh
 // The same for Monte Carlo samples made a chunk at a time as they are queried, instead of read
 // from a stored set: the result, bit for bit, of compute_deviations on the SampleSet of those
 // samples (sample_surface with Monte Carlo face sampling alone), without its 72 bytes per
-// sample. Where the samples' order is not spatially coherent (see below) they are stored first
-// and queried as a set. `samples.mesh()` must be `reference`'s mesh. O(as above).
+// sample. The samples come along a Morton curve (metric/sampling.h) and are queried in chunks
+// of their own order (never in the cell order). `samples.mesh()` must be `reference`'s mesh.
+// O(as above).
 SampleDeviations compute_deviations(const MonteCarloSamples& samples, const PreparedMesh& reference,
                                     const PreparedMesh& target, const NearestPointIndex& index,
                                     const std::vector<Measure>& measures,

@@ -9,9 +9,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <sstream>
 
 #include "metric/errors.h"
+#include "metric/morton_order.h"
 
 namespace meshdev {
 namespace {
@@ -131,9 +133,92 @@ std::size_t scan_total(const TriMesh& m, double step, int threads) {
   return scan_total(face_legs(m, threads), nullptr, m.faces.size(), step, threads);
 }
 
+// The order of points point_of(0 .. n - 1) along a Morton curve over the box of the mesh's
+// vertices: morton_order's order (the codes cut to the 24 bits from the highest in which the
+// least and the greatest differ, sorted stably: points of one cell keep index order), made on the
+// team for a whole mesh instead of a chunk. The codes are computed on the team; the sort is an LSD
+// radix sort of two 12-bit passes, each thread counting and scattering its own contiguous range
+// (stable, so the same order for any team). O(n) time, 16 bytes per point of scratch.
+template <class PointOf>
+std::vector<std::uint32_t> along_curve(const TriMesh& m, std::size_t n, PointOf point_of,
+                                       int threads) {
+  assert(n < (std::size_t{1} << 32));
+  std::vector<std::uint32_t> order(n);
+  const MortonGrid grid(position_bounding_box(m, threads));
+  const int team = static_cast<int>(std::clamp<std::size_t>(
+      n / 65536, 1, static_cast<std::size_t>(threads > 0 ? threads : omp_get_max_threads())));
+  if (n < 2 || !grid.valid()) {
+    for (std::uint32_t i = 0; i < n; ++i) order[i] = i;
+    return order;
+  }
+  std::unique_ptr<std::uint64_t[]> keys(new std::uint64_t[2 * n]);  // codes, then two buffers
+  std::uint64_t least = ~std::uint64_t{0}, most = 0;
+#pragma omp parallel for num_threads(team) reduction(min : least) reduction(max : most)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+    const std::uint64_t c = grid.code(point_of(static_cast<std::size_t>(i)));
+    keys[i] = c;
+    least = std::min(least, c);
+    most = std::max(most, c);
+  }
+  constexpr int kPassBits = 12, kBits = 2 * kPassBits;
+  static_assert(kBits == kMortonSortBits, "the bits morton_order sorts by");
+  constexpr std::size_t kBins = std::size_t{1} << kPassBits;
+  const int top = least == most ? 0 : 63 - __builtin_clzll(least ^ most);
+  const int low = std::max(0, top - (kBits - 1));
+  constexpr std::uint64_t kMask = (std::uint64_t{1} << kBits) - 1;
+  std::uint64_t* from = keys.get();
+  std::uint64_t* to = keys.get() + n;
+  std::vector<std::size_t> start(static_cast<std::size_t>(team) * kBins);
+#pragma omp parallel num_threads(team)
+  {
+    const auto me = static_cast<std::size_t>(omp_get_thread_num());
+    const std::size_t size = static_cast<std::size_t>(omp_get_num_threads());
+    const std::size_t begin = n * me / size, end = n * (me + 1) / size;
+    for (std::size_t i = begin; i < end; ++i) from[i] = (from[i] >> low & kMask) << 32 | i;
+    for (int shift = 32; shift < 32 + kBits; shift += kPassBits) {
+      std::size_t* mine = start.data() + me * kBins;
+      std::fill(mine, mine + kBins, std::size_t{0});
+      for (std::size_t i = begin; i < end; ++i) ++mine[from[i] >> shift & (kBins - 1)];
+#pragma omp barrier
+#pragma omp single
+      {  // each bin's slots, thread by thread: the threads' ranges keep their order (stable)
+        std::size_t next = 0;
+        for (std::size_t b = 0; b < kBins; ++b)
+          for (std::size_t t = 0; t < size; ++t) {
+            const std::size_t count = start[t * kBins + b];
+            start[t * kBins + b] = next;
+            next += count;
+          }
+      }  // (the implied barrier)
+      for (std::size_t i = begin; i < end; ++i)
+        to[mine[from[i] >> shift & (kBins - 1)]++] = from[i];
+#pragma omp barrier
+#pragma omp single
+      std::swap(from, to);
+    }
+    for (std::size_t i = begin; i < end; ++i) order[i] = static_cast<std::uint32_t>(from[i]);
+  }
+  return order;
+}
+
 }  // namespace
 
 namespace detail {
+
+std::vector<std::uint32_t> face_visit_order(const TriMesh& m, int threads) {
+  return along_curve(
+      m, m.faces.size(),
+      [&m](std::size_t f) {
+        const Triangle& t = m.faces[f];
+        return (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0);
+      },
+      threads);
+}
+
+std::vector<std::uint32_t> vertex_visit_order(const TriMesh& m, int threads) {
+  return along_curve(
+      m, m.positions.size(), [&m](std::size_t v) { return m.positions[v]; }, threads);
+}
 
 double solve_scan_step(const TriMesh& m, std::size_t target, int threads, bool settle) {
   const std::vector<Legs> legs = face_legs(m, threads);
@@ -301,10 +386,10 @@ Sample vertex_sample(const TriMesh& m, std::uint32_t v, std::uint32_t face, std:
   return s;
 }
 
-void add_vertex_samples(const TriMesh& m, SampleSet& set) {
+void add_vertex_samples(const TriMesh& m, int threads, SampleSet& set) {
   const FirstFaces first = first_faces(m);
   const bool point_cloud = m.faces.empty();
-  for (std::uint32_t v = 0; v < m.positions.size(); ++v) {
+  for (const std::uint32_t v : detail::vertex_visit_order(m, threads)) {
     if (!point_cloud && first.face[v] == kNoFace) continue;  // unreferenced
     set.samples.push_back(vertex_sample(m, v, first.face[v], first.corner[v]));
     ++set.vertex_count;
@@ -353,21 +438,23 @@ void add_edge_samples(const TriMesh& m, double step, SampleSet& set) {
   }
 }
 
-// Face samples, faces in parallel: count(f) samples per face, then fill(f, out, n) places face
-// f's n samples in its own slots (raw storage: see SampleAllocator), so the set is the same as a
-// serial pass for any thread count and each slot is first written by the thread that fills it.
+// Face samples, faces in parallel in the visit order: count(f) samples per face, then
+// fill(f, out, n) places face f's n samples in its own slots (raw storage: see SampleAllocator),
+// so the set is the same as a serial pass for any thread count and each slot is first written by
+// the thread that fills it.
 template <class Count, class Fill>
 void add_face_samples(const TriMesh& m, int threads, SampleSet& set, Count&& count, Fill&& fill) {
   const auto faces = static_cast<std::int64_t>(m.faces.size());
+  const std::vector<std::uint32_t> order = detail::face_visit_order(m, threads);
   std::vector<std::size_t> first(m.faces.size() + 1);
 #pragma omp parallel for num_threads(threads) schedule(static)
-  for (std::int64_t f = 0; f < faces; ++f) first[f + 1] = count(static_cast<std::uint32_t>(f));
+  for (std::int64_t k = 0; k < faces; ++k) first[k + 1] = count(order[k]);
   first[0] = set.samples.size();
-  for (std::size_t f = 0; f < m.faces.size(); ++f) first[f + 1] += first[f];
+  for (std::size_t k = 0; k < m.faces.size(); ++k) first[k + 1] += first[k];
   set.samples.resize(first.back());
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 256)
-  for (std::int64_t f = 0; f < faces; ++f)
-    fill(static_cast<std::uint32_t>(f), set.samples.data() + first[f], first[f + 1] - first[f]);
+  for (std::int64_t k = 0; k < faces; ++k)
+    fill(order[k], set.samples.data() + first[k], first[k + 1] - first[k]);
   set.face_count += first.back() - first[0];
 }
 
@@ -479,7 +566,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
       (o.faces == FaceSampling::kMonteCarlo ? target + mesh.faces.size() : 0);
   if (expected <= kMaxSamples) set.samples.reserve(expected);
 
-  if (o.vertices) add_vertex_samples(mesh, set);
+  if (o.vertices) add_vertex_samples(mesh, threads, set);
   if (o.edges) add_edge_samples(mesh, step, set);
   if (o.faces == FaceSampling::kScanConversion) add_scan_samples(mesh, step, threads, set);
   if (o.faces == FaceSampling::kMonteCarlo) {
@@ -543,33 +630,39 @@ MonteCarloSamples::MonteCarloSamples(const TriMesh& mesh, std::size_t target, st
     return;
   }
   weight_ = total / static_cast<double>(target);
+  // Each face's count (in its own slot), then the offsets in the visit order.
+  order_ = detail::face_visit_order(mesh, team);
+  std::vector<std::size_t> first(mesh.faces.size() + 1, 0);
 #pragma omp parallel for num_threads(team) schedule(static)
-  for (std::int64_t f = 0; f < faces; ++f) {
+  for (std::int64_t k = 0; k < faces; ++k) {
+    const std::uint32_t f = order_[k];
     const double expected = static_cast<double>(target) * area_at(f) / total;
-    first_[f + 1] = static_cast<std::size_t>(
+    first[k + 1] = static_cast<std::size_t>(
         std::floor(expected + unit_random(seed, static_cast<std::uint64_t>(f), ~0ull)));
   }
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) first_[f + 1] += first_[f];
+  for (std::size_t k = 0; k < mesh.faces.size(); ++k) first[k + 1] += first[k];
+  first_ = std::move(first);
 }
 
 void MonteCarloSamples::generate(std::size_t begin, std::size_t count, Sample* out) const {
   assert(begin + count <= size());
-  // The face holding sample `begin`: the last f with first_[f] <= begin (faces with no samples
-  // share their successor's offset, so this one has a sample).
-  auto face = static_cast<std::uint32_t>(std::upper_bound(first_.begin(), first_.end(), begin) -
-                                         first_.begin() - 1);
-  std::size_t k = begin - first_[face];
+  // The face holding sample `begin`, the slot-th visited: the last slot with first_[slot] <=
+  // begin (faces with no samples share their successor's offset, so this one has a sample).
+  auto slot = static_cast<std::size_t>(std::upper_bound(first_.begin(), first_.end(), begin) -
+                                       first_.begin() - 1);
+  std::size_t k = begin - first_[slot];
   for (std::size_t j = 0; j < count;) {
-    while (first_[face] + k == first_[face + 1]) {  // past this face's samples
-      ++face;
+    while (first_[slot] + k == first_[slot + 1]) {  // past this face's samples
+      ++slot;
       k = 0;
     }
     // The face's samples k .. of this range: its corners and hash read once.
+    const std::uint32_t face = order_[slot];
     const Triangle& tri = mesh_->faces[face];
     const Vec3 &a = mesh_->positions[tri[0]], &b = mesh_->positions[tri[1]],
                &c = mesh_->positions[tri[2]];
     const std::uint64_t h = face_hash(seed_, face);
-    for (const std::size_t end = std::min(first_[face + 1] - first_[face], k + count - j); k < end;
+    for (const std::size_t end = std::min(first_[slot + 1] - first_[slot], k + count - j); k < end;
          ++k, ++j) {
       const double r = std::sqrt(unit_random_of(h, 2 * k));
       const double r2 = unit_random_of(h, 2 * k + 1);
@@ -610,23 +703,24 @@ SampleSequence::SampleSequence(const TriMesh& mesh, const SamplingOptions& o, do
         throw InvalidInput("the sampling step is 0 (is the mesh's bounding box a single point?)");
       step = detail::solve_scan_step(mesh, target, threads);
     }
-    // Each face's count, then their offsets; a step far too small is refused as quickly as
-    // sample_surface refuses it.
+    // Each face's count in the visit order, then their offsets; a step far too small is refused
+    // as quickly as sample_surface refuses it.
+    order_ = detail::face_visit_order(mesh, threads);
     std::vector<std::uint32_t> counts(mesh.faces.size());
-    if (scan_total(face_legs(mesh, threads), nullptr, mesh.faces.size(), step, threads,
+    if (scan_total(face_legs(mesh, threads), order_.data(), order_.size(), step, threads,
                    counts.data()) > kMaxSamples)
       throw InvalidInput("the sampling step " + std::to_string(step) +
                          " would create more than 2^31 samples; use a larger step");
     first_.resize(mesh.faces.size() + 1);
     first_[0] = 0;
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) first_[f + 1] = first_[f] + counts[f];
+    for (std::size_t k = 0; k < mesh.faces.size(); ++k) first_[k + 1] = first_[k] + counts[k];
     face_count_ = first_.back();
     step_ = step;
   }
   if (o.vertices) {
     const FirstFaces first = first_faces(mesh);
     const bool point_cloud = mesh.faces.empty();
-    for (std::uint32_t v = 0; v < mesh.positions.size(); ++v)
+    for (const std::uint32_t v : detail::vertex_visit_order(mesh, threads))
       if (point_cloud || first.face[v] != kNoFace)
         vertices_.push_back({v, first.face[v], first.corner[v]});
   }
@@ -661,18 +755,20 @@ void SampleSequence::generate(std::size_t begin, std::size_t count, Sample* out)
 // and order (for_each_scan_point, entered at the range's first point; the tests compare the two).
 void SampleSequence::generate_scan(std::size_t begin, std::size_t count, Sample* out) const {
   assert(begin + count <= face_count_);
-  auto face = static_cast<std::uint32_t>(std::upper_bound(first_.begin(), first_.end(), begin) -
-                                         first_.begin() - 1);
-  std::size_t k = begin - first_[face];  // the point of the face to place next
+  // The slot-th visited face holds sample `begin` (as in MonteCarloSamples::generate).
+  auto slot = static_cast<std::size_t>(std::upper_bound(first_.begin(), first_.end(), begin) -
+                                       first_.begin() - 1);
+  std::size_t k = begin - first_[slot];  // the point of the face to place next
   for (std::size_t j = 0; j < count;) {
-    while (first_[face] + k == first_[face + 1]) {
-      ++face;
+    while (first_[slot] + k == first_[slot + 1]) {
+      ++slot;
       k = 0;
     }
+    const std::uint32_t face = order_[slot];
     const Triangle& tri = mesh_->faces[face];
     const Vec3 &a = mesh_->positions[tri[0]], &b = mesh_->positions[tri[1]],
                &c = mesh_->positions[tri[2]];
-    const double w = face_area(*mesh_, face) / static_cast<double>(first_[face + 1] - first_[face]);
+    const double w = face_area(*mesh_, face) / static_cast<double>(first_[slot + 1] - first_[slot]);
     const double lab = norm(b - a), lac = norm(c - a);
     const std::size_t nu =
         lab > 0.0 ? static_cast<std::size_t>(std::floor(lab / step_ + kGridSlack)) : 0;
@@ -693,7 +789,7 @@ void SampleSequence::generate_scan(std::size_t begin, std::size_t count, Sample*
       }
       row_first = row_end;
     }
-    assert(j == count || k == first_[face + 1] - first_[face]);
+    assert(j == count || k == first_[slot + 1] - first_[slot]);
   }
 }
 
@@ -717,11 +813,11 @@ void SampleSequence::weights(double* out, int threads) const {
   }
   const auto faces = static_cast<std::int64_t>(first_.empty() ? 0 : first_.size() - 1);
 #pragma omp parallel for num_threads(team) schedule(static)
-  for (std::int64_t f = 0; f < faces; ++f) {
-    const std::size_t n = first_[f + 1] - first_[f];
+  for (std::int64_t k = 0; k < faces; ++k) {
+    const std::size_t n = first_[k + 1] - first_[k];
     if (n == 0) continue;
-    std::fill(out + nv + first_[f], out + nv + first_[f + 1],
-              face_area(*mesh_, static_cast<std::size_t>(f)) / static_cast<double>(n));
+    std::fill(out + nv + first_[k], out + nv + first_[k + 1],
+              face_area(*mesh_, order_[k]) / static_cast<double>(n));
   }
 }
 

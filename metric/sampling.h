@@ -11,6 +11,13 @@
 //  - faces, Monte Carlo: area-uniform random points; face f gets floor(N·area_f/area + u_f)
 //              points, u_f uniform in [0,1); the random numbers of point k on face f are a hash
 //              of (seed, f, k), so the set does not depend on the thread count.
+// Order: vertex samples first, then edge samples, then face samples. Vertices, and faces (by
+// their centroids), are visited along a Morton curve over the mesh's box, so that consecutive
+// samples lie near each other whatever order the file stores them in: the nearest-point queries
+// run in chunks of consecutive samples, and on a mesh stored in no spatial order a chunk made in
+// index order covered faces from all over it (buildings.ply's default samples: the forward
+// queries about 30 % slower, docs/performance.md §3). Edge samples follow their edges' vertex
+// indices. Each face's samples are consecutive, in the order the kinds below describe.
 // Weights (for area-weighted statistics): face samples carry area_f / (samples on f); when a set
 // has face samples, its vertex and edge samples carry weight 0 (they hunt the maximum but do not
 // bias the mean); without face samples, edge samples carry length/(samples on the edge) and vertex
@@ -81,7 +88,8 @@ struct SampleSet {
 // sampling alone, which makes them through this class. compare_meshes streams them (through
 // SampleSequence, below) to compute_deviations a chunk at a time instead of storing the set (72
 // bytes per sample, which a 1M-sample direction first had to fault in: docs/performance.md §3,
-// thirteenth session). `mesh` must outlive it. Holds one offset per face (8 bytes); the samples
+// thirteenth session). `mesh` must outlive it. Holds one offset and one face per face (12 bytes),
+// the faces in the visit order (detail::face_visit_order); the samples
 // weigh weight() each.
 class MonteCarloSamples {
  public:
@@ -110,7 +118,8 @@ class MonteCarloSamples {
   const TriMesh* mesh_;
   std::uint64_t seed_;
   double weight_ = 0;
-  std::vector<std::size_t> first_;  // first_[f]: the first sample of face f; first_[F] = size()
+  std::vector<std::uint32_t> order_;  // the faces in the visit order (detail::face_visit_order)
+  std::vector<std::size_t> first_;    // first_[k]: the first sample of face order_[k]; [F]: size()
 };
 
 // The samples sample_surface(mesh, options, diagonal) gives for options without edge samples
@@ -118,7 +127,7 @@ class MonteCarloSamples {
 // the same samples, weights and order, bit for bit, without storing them (72 bytes per sample,
 // which a direction had to fault in: 300 MB for the 4.2M default samples of buildings.ply).
 // compare_meshes streams them through compute_deviations a chunk at a time. Holds 12 bytes per
-// referenced vertex and 8 per face. `mesh` must outlive it.
+// referenced vertex and 12 per face. `mesh` must outlive it.
 class SampleSequence {
  public:
   // Throws InvalidInput as sample_surface does. Precondition: !options.edges (sequence_sampling).
@@ -154,7 +163,10 @@ class SampleSequence {
   std::vector<VertexRef> vertices_;
   double vertex_weight_ = 1;                      // 0 where there are face samples
   std::optional<MonteCarloSamples> monte_carlo_;  // for Monte Carlo face samples
-  std::vector<std::size_t> first_;  // scan conversion: face f's first face sample; [F]: count
+  // Scan conversion: the faces in the visit order, and first_[k], the first face sample of face
+  // order_[k] ([F]: the count).
+  std::vector<std::uint32_t> order_;
+  std::vector<std::size_t> first_;
   std::size_t face_count_ = 0;
   double step_ = 0, equal_weight_ = 0;
   std::string description_;
@@ -198,6 +210,15 @@ namespace detail {
 // Totals far past the target (64 x target + 4 F + 1024) are not counted to the end; throws
 // InvalidInput if every step tried gave such a total (a needle far longer than the other faces).
 double solve_scan_step(const TriMesh& mesh, std::size_t target, int threads, bool settle = true);
+
+// The order face samples visit the faces in: the faces' centroids along a Morton curve over the
+// box of the mesh's vertices (morton_order: 24 bits from the highest in which the codes differ;
+// faces in one cell keep index order). Deterministic, the same for any `threads` (the centroids
+// on the team, 0 = OpenMP's default). O(F) time, 32 bytes per face of scratch.
+std::vector<std::uint32_t> face_visit_order(const TriMesh& mesh, int threads);
+// The order vertex samples visit the vertices in: every vertex's position along the same curve
+// (unreferenced ones included; the samplers skip them). O(V).
+std::vector<std::uint32_t> vertex_visit_order(const TriMesh& mesh, int threads);
 }  // namespace detail
 
 }  // namespace meshdev

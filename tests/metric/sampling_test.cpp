@@ -10,6 +10,7 @@
 
 #include "metric/errors.h"
 #include "metric/io/mesh_io.h"
+#include "metric/morton_order.h"
 #include "tests/support/shapes.h"
 #include "tests/support/test_data.h"
 
@@ -344,8 +345,14 @@ TEST(Sampling, FaceSamplesAreTheSameForAnyThreadCount) {
     if (kind == FaceSampling::kScanConversion) {
       EXPECT_EQ(one.face_count, scan_total);
     }
-    for (std::size_t i = one.vertex_count + 1; i < one.samples.size(); ++i)
-      ASSERT_LE(one.samples[i - 1].face, one.samples[i].face);  // face order
+    // Each face's samples together, the faces in their visit order.
+    const std::vector<std::uint32_t> order = detail::face_visit_order(m, 1);
+    std::size_t slot = 0;
+    for (std::size_t i = one.vertex_count; i < one.samples.size(); ++i) {
+      if (i > one.vertex_count && one.samples[i].face == one.samples[i - 1].face) continue;
+      while (slot < order.size() && order[slot] != one.samples[i].face) ++slot;
+      ASSERT_LT(slot++, order.size()) << "sample " << i << " on face " << one.samples[i].face;
+    }
     for (int threads : {2, 3, 7}) {
       o.threads = threads;
       const SampleSet other = sample_surface(m, o, 1.0);
@@ -358,6 +365,85 @@ TEST(Sampling, FaceSamplesAreTheSameForAnyThreadCount) {
         ASSERT_EQ(x.weight, y.weight);
         ASSERT_EQ(x.kind, y.kind);
       }
+    }
+  }
+}
+
+// The visit orders against their definition computed plainly: the points' Morton codes on the
+// grid over the box of the mesh's vertices, cut to the 24 bits from the highest in which the
+// least and the greatest code differ, sorted stably (points of one cell in index order).
+std::vector<std::uint32_t> plain_curve_order(const TriMesh& m, const std::vector<Vec3>& points) {
+  const MortonGrid grid(bounding_box(m));  // every vertex is referenced in these meshes
+  std::vector<std::uint64_t> code(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) code[i] = grid.code(points[i]);
+  const auto [least, most] = std::minmax_element(code.begin(), code.end());
+  const int top = *least == *most ? 0 : 63 - __builtin_clzll(*least ^ *most);
+  const int low = std::max(0, top - (kMortonSortBits - 1));
+  std::vector<std::uint32_t> order(points.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) {
+    return code[x] >> low < code[y] >> low;
+  });
+  return order;
+}
+
+TEST(Sampling, FacesAndVerticesAreVisitedAlongAMortonCurve) {
+  for (const TriMesh& m : {test::icosphere(3), test::random_soup(2000, 5, 0.1), test::grid(40)}) {
+    std::vector<Vec3> centre;
+    for (const Triangle& t : m.faces)
+      centre.push_back((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0));
+    for (int threads : {1, 2, 3}) {
+      EXPECT_EQ(detail::face_visit_order(m, threads), plain_curve_order(m, centre));
+      EXPECT_EQ(detail::vertex_visit_order(m, threads), plain_curve_order(m, m.positions));
+    }
+  }
+}
+
+// The samples' order follows the surface, not the file: a grid with its faces and vertices
+// shuffled gives the same samples (as a set) as the grid stored row by row, and consecutive
+// samples about as near each other (in index order they would jump across the grid).
+TEST(Sampling, SampleOrderFollowsTheSurfaceNotTheFile) {
+  const int n = 48;
+  const TriMesh plain = test::grid(n);
+  TriMesh shuffled;
+  std::mt19937_64 rng(3);
+  std::vector<std::uint32_t> vertex_to(plain.positions.size());
+  for (std::uint32_t v = 0; v < vertex_to.size(); ++v) vertex_to[v] = v;
+  std::shuffle(vertex_to.begin(), vertex_to.end(), rng);
+  shuffled.positions.resize(plain.positions.size());
+  for (std::uint32_t v = 0; v < vertex_to.size(); ++v)
+    shuffled.positions[vertex_to[v]] = plain.positions[v];
+  for (const Triangle& t : plain.faces)
+    shuffled.faces.push_back({vertex_to[t[0]], vertex_to[t[1]], vertex_to[t[2]]});
+  std::shuffle(shuffled.faces.begin(), shuffled.faces.end(), rng);
+
+  for (FaceSampling kind : {FaceSampling::kScanConversion, FaceSampling::kMonteCarlo}) {
+    SamplingOptions o;
+    o.faces = kind;
+    o.target_count = 20 * plain.faces.size();
+    const SampleSet x = sample_surface(plain, o, std::sqrt(2.0));
+    const SampleSet y = sample_surface(shuffled, o, std::sqrt(2.0));
+    ASSERT_EQ(x.samples.size(), y.samples.size());
+    // Mean step between consecutive samples of one kind, in grid cells.
+    auto mean_step = [&](const SampleSet& set, std::size_t begin, std::size_t end) {
+      double sum = 0.0;
+      for (std::size_t i = begin + 1; i < end; ++i)
+        sum += norm(set.samples[i].point - set.samples[i - 1].point);
+      return sum / static_cast<double>(end - begin - 1) * n;
+    };
+    const std::size_t nv = x.vertex_count, total = x.samples.size();
+    EXPECT_LT(mean_step(y, 0, nv), 3.0);  // 1.7 here; in index order of the shuffle 26
+    EXPECT_LT(mean_step(y, nv, total), 1.5 * mean_step(x, nv, total));
+    EXPECT_LT(mean_step(y, nv, total), 0.75);     // 0.4-0.5 here; in index order 1.5-1.7
+    if (kind == FaceSampling::kScanConversion) {  // the same points (Monte Carlo's hash the face)
+      auto points = [](const SampleSet& set) {
+        std::vector<std::array<double, 4>> p;
+        for (const Sample& s : set.samples)
+          p.push_back({s.point.x, s.point.y, s.point.z, s.weight});
+        std::sort(p.begin(), p.end());
+        return p;
+      };
+      EXPECT_EQ(points(x), points(y));
     }
   }
 }
