@@ -405,17 +405,7 @@ TEST(Sampling, FacesAndVerticesAreVisitedAlongAMortonCurve) {
 TEST(Sampling, SampleOrderFollowsTheSurfaceNotTheFile) {
   const int n = 48;
   const TriMesh plain = test::grid(n);
-  TriMesh shuffled;
-  std::mt19937_64 rng(3);
-  std::vector<std::uint32_t> vertex_to(plain.positions.size());
-  for (std::uint32_t v = 0; v < vertex_to.size(); ++v) vertex_to[v] = v;
-  std::shuffle(vertex_to.begin(), vertex_to.end(), rng);
-  shuffled.positions.resize(plain.positions.size());
-  for (std::uint32_t v = 0; v < vertex_to.size(); ++v)
-    shuffled.positions[vertex_to[v]] = plain.positions[v];
-  for (const Triangle& t : plain.faces)
-    shuffled.faces.push_back({vertex_to[t[0]], vertex_to[t[1]], vertex_to[t[2]]});
-  std::shuffle(shuffled.faces.begin(), shuffled.faces.end(), rng);
+  const TriMesh shuffled = test::shuffled(plain, 3);
 
   for (FaceSampling kind : {FaceSampling::kScanConversion, FaceSampling::kMonteCarlo}) {
     SamplingOptions o;

@@ -104,4 +104,17 @@ TriMesh translated(const TriMesh& mesh, const Vec3& t) {
   return m;
 }
 
+TriMesh shuffled(const TriMesh& mesh, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::vector<std::uint32_t> to(mesh.positions.size());
+  for (std::uint32_t v = 0; v < to.size(); ++v) to[v] = v;
+  std::shuffle(to.begin(), to.end(), rng);
+  TriMesh m;
+  m.positions.resize(mesh.positions.size());
+  for (std::uint32_t v = 0; v < to.size(); ++v) m.positions[to[v]] = mesh.positions[v];
+  for (const Triangle& t : mesh.faces) m.faces.push_back({to[t[0]], to[t[1]], to[t[2]]});
+  std::shuffle(m.faces.begin(), m.faces.end(), rng);
+  return m;
+}
+
 }  // namespace meshdev::test

@@ -27,4 +27,8 @@ TriMesh random_soup(int triangles, std::uint64_t seed, double degenerate_fractio
 // The same mesh moved by t.
 TriMesh translated(const TriMesh& mesh, const Vec3& t);
 
+// The same surface with its vertices and faces stored in a random order (seeded), as a file
+// stored in no spatial order gives them; each face keeps its corners' order. Positions only.
+TriMesh shuffled(const TriMesh& mesh, std::uint64_t seed);
+
 }  // namespace meshdev::test
