@@ -206,9 +206,14 @@ std::vector<std::uint32_t> along_curve(const TriMesh& m, std::size_t n, PointOf 
 namespace detail {
 
 std::vector<std::uint32_t> face_visit_order(const TriMesh& m, int threads) {
+  // The corners of the face 16 ahead are prefetched: on a mesh stored in no spatial order they
+  // lie anywhere (torus1m_shuffled.ply, 2 threads: 44 -> 28-31 ms; sampling_bench's 1.3M
+  // shuffled faces on 1 thread 176 -> 120 ms; buildings.ply unchanged, 7-8 ms).
   return along_curve(
       m, m.faces.size(),
       [&m](std::size_t f) {
+        if (f + 16 < m.faces.size())
+          for (const std::uint32_t v : m.faces[f + 16]) __builtin_prefetch(&m.positions[v]);
         const Triangle& t = m.faces[f];
         return (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0);
       },
