@@ -134,7 +134,7 @@ std::size_t scan_total(const TriMesh& m, double step, int threads) {
 }
 
 // The order of points point_of(0 .. n - 1) along a Morton curve over the box of the mesh's
-// vertices: morton_order's order (the codes cut to the 24 bits from the highest in which the
+// vertices, by morton_order's rule (the codes cut to the 24 bits from the highest in which the
 // least and the greatest differ, sorted stably: points of one cell keep index order), made on the
 // team for a whole mesh instead of a chunk. The codes are computed on the team; the sort is an LSD
 // radix sort of two 12-bit passes, each thread counting and scattering its own contiguous range
