@@ -27,6 +27,15 @@ void expect_same_sample(const Sample& x, const Sample& y, std::size_t i) {
   ASSERT_EQ(x.kind, y.kind) << "sample " << i;
 }
 
+// Monte Carlo face samples alone, `count` of them.
+SamplingOptions monte_carlo_options(std::size_t count) {
+  SamplingOptions o;
+  o.vertices = false;
+  o.faces = FaceSampling::kMonteCarlo;
+  o.target_count = count;
+  return o;
+}
+
 // Eq. 5-6 on the right triangle with legs 1: points (iΔ, jΔ) with i + j <= 1/Δ.
 TEST(Sampling, ScanConversionCountFollowsEquationSix) {
   const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
@@ -156,10 +165,7 @@ TEST(Sampling, SolvedStepIsTheSameWithSettledFacesSkippedOnARealScan) {
 
 TEST(Sampling, MonteCarloDependsOnlyOnTheSeed) {
   TriMesh m = test::icosphere(2);
-  SamplingOptions o;
-  o.vertices = false;
-  o.faces = FaceSampling::kMonteCarlo;
-  o.target_count = 20000;
+  SamplingOptions o = monte_carlo_options(20000);
   o.seed = 7;
   SampleSet x = sample_surface(m, o, 2.0), y = sample_surface(m, o, 2.0);
   ASSERT_EQ(x.samples.size(), y.samples.size());
@@ -176,10 +182,7 @@ TEST(Sampling, MonteCarloDependsOnlyOnTheSeed) {
 // faces that get no samples, ranges that start and end inside faces and cross empty ones.
 TEST(Sampling, MonteCarloSamplesMakeTheStoredSetInAnyRange) {
   const TriMesh m = test::random_soup(400, 5, 0.2);
-  SamplingOptions o;
-  o.vertices = false;
-  o.faces = FaceSampling::kMonteCarlo;
-  o.target_count = 6000;
+  SamplingOptions o = monte_carlo_options(6000);
   o.seed = 3;
   o.threads = 2;
   ASSERT_TRUE(monte_carlo_only(o));
@@ -299,10 +302,7 @@ TEST(Sampling, MonteCarloSamplesOfAZeroAreaMeshAreNone) {
   TriMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
   m.faces = {{0, 1, 2}};
-  SamplingOptions o;
-  o.vertices = false;
-  o.faces = FaceSampling::kMonteCarlo;
-  o.target_count = 100;
+  SamplingOptions o = monte_carlo_options(100);
   EXPECT_EQ(monte_carlo_samples(m, o).size(), 0u);
   EXPECT_TRUE(sample_surface(m, o, 1.0).samples.empty());
 }
@@ -388,7 +388,7 @@ std::vector<std::uint32_t> plain_curve_order(const TriMesh& m, const std::vector
 }
 
 // The last mesh, 262,088 faces and 131,769 vertices stored shuffled, is large enough for the
-// sort's team of 2 and 3 threads (131,072 points and more; under TSan in scripts/sanitize.sh).
+// sort's team of 3 threads (16,384 points make a team of 2; under TSan in scripts/sanitize.sh).
 TEST(Sampling, FacesAndVerticesAreVisitedAlongAMortonCurve) {
   for (const TriMesh& m : {test::icosphere(3), test::random_soup(2000, 5, 0.1), test::grid(40),
                            test::shuffled(test::grid(362), 7)}) {
@@ -494,10 +494,7 @@ TEST(Sampling, ANeedleIsNotCountedToTheEndWhileTheStepIsSearched) {
 // were inf / inf, cast to an integer (found by fuzz_nearest_point under UBSan).
 TEST(Sampling, MonteCarloRefusesAnAreaThatOverflows) {
   TriMesh m = test::square(1e100);
-  SamplingOptions o;
-  o.vertices = false;
-  o.faces = FaceSampling::kMonteCarlo;
-  o.target_count = 100;
+  SamplingOptions o = monte_carlo_options(100);
   ASSERT_TRUE(std::isinf(surface_area(m)));
   EXPECT_THROW(sample_surface(m, o, 1.0), InvalidInput);
   EXPECT_THROW(SampleSequence(m, o, 1.0), InvalidInput);
