@@ -82,7 +82,12 @@ constexpr double kPacketExtent = 3.0;
 constexpr std::size_t kFullPacket = 16;
 constexpr double kFullPacketExtent = 2.0;
 constexpr std::size_t kMinBlockPacket = 2;
-constexpr std::size_t kMaxBlocks = 64;
+// Samples far from B give packets whose reach holds many leaf blocks; beyond kMaxBlocks their
+// queries are answered one by one. 64 -> 128 blocks (`meshdev compare buildings.ply
+// buildings_s40k.ply`, default sampling: queries of such packets 233k -> 104k of about 4.6M; its
+// queries 2-6 % faster; peer_compare --ab 8 buildings_s40k -> buildings +3.5 %, the other pairs
+// within 1 %); 256 was no faster than 128 (docs/performance.md §3, twenty-fifth session).
+constexpr std::size_t kMaxBlocks = 128;
 constexpr std::size_t kDenseQueries = 3;
 // A packet's guess of its queries' distances: this factor times the largest distance of the
 // answers before it (used where it is less than half the packet's diagonal); the next packet
@@ -1648,9 +1653,16 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
     // finite least distance is always a remaining block's; where the least is +inf (blocks too
     // far for float, with no finite radius yet) a remaining block is taken from the mask, never
     // a searched one or a padding lane (fuzz_nearest_point found the loop re-searching those).
-    static_assert(kMaxBlocks <= 64, "one bit per block");
-    std::uint64_t remaining = blocks == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << blocks) - 1;
-    while (remaining != 0) {
+    constexpr std::size_t kWords = (kMaxBlocks + 63) / 64;
+    std::uint64_t remaining[kWords];
+    for (std::size_t w = 0; w < kWords; ++w) {
+      const std::size_t from = 64 * w;
+      remaining[w] = blocks >= from + 64 ? ~std::uint64_t{0}
+                     : blocks > from     ? (std::uint64_t{1} << (blocks - from)) - 1
+                                         : 0;
+    }
+    std::size_t left = blocks;
+    while (left != 0) {
       F4 lowest = F4::load(dist);
       for (std::size_t b = 4; b < padded; b += 4) lowest = min(lowest, F4::load(dist + b));
       float lanes[4];
@@ -1659,7 +1671,9 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
       if (!(least <= s.box_limit2)) break;
       std::size_t at = 0;
       if (least == kInf) {
-        at = static_cast<std::size_t>(__builtin_ctzll(remaining));
+        std::size_t w = 0;
+        while (remaining[w] == 0) ++w;
+        at = 64 * w + static_cast<std::size_t>(__builtin_ctzll(remaining[w]));
       } else {
         const F4 wanted = F4::splat(least);
         for (;; at += 4) {
@@ -1670,8 +1684,9 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
           }
         }
       }
-      assert(at < blocks && (remaining >> at & 1) != 0);
-      remaining &= ~(std::uint64_t{1} << at);
+      assert(at < blocks && (remaining[at / 64] >> (at % 64) & 1) != 0);
+      remaining[at / 64] &= ~(std::uint64_t{1} << (at % 64));
+      --left;
       dist[at] = kInf;
       search_leaf(leaves_[scratch.block[at]], s);
     }

@@ -530,6 +530,22 @@ TEST(NearestPoint, BvhSparsePacketsOfFacesEqualBruteForce) {
   stress_batches_are_the_oracle(67, 71);
 }
 
+// Far off the surface a packet's reach spans many leaf blocks: packets of up to kMaxBlocks (128)
+// of them are still searched as packets (not query by query) and give the oracle's answers, in
+// dense and in sparse streams (every query, or one per 4 faces).
+TEST(NearestPoint, BvhPacketsReachingManyBlocksEqualBruteForce) {
+  const TriMesh sphere = test::icosphere(4);
+  for (std::size_t stride : {1, 4})
+    for (double outward : {0.1, 0.3}) {
+      std::string what;
+      const BatchHits batch = sphere_batch(sphere, 73, 0.0, false, outward, stride, what);
+      // With at most 64 blocks per packet, 1,302 of 5,120 and 384 of 1,280 at 0.3.
+      EXPECT_GT(batch.packet_queries, 3 * batch.distance.size() / 4)
+          << what << " stride " << stride;
+      if (HasFailure()) return;
+    }
+}
+
 // Block packets guess their queries' distances from the answers before them and search again in
 // full where a query is farther than guessed (TriangleBvh::find_batch). Here the distances jump:
 // runs of queries on the surface (distance about 0) with one query in 7 lifted off it along the
