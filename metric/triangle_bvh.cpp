@@ -84,7 +84,7 @@ constexpr double kFullPacketExtent = 2.0;
 constexpr std::size_t kMinBlockPacket = 2;
 // Samples far from B give packets whose reach holds many leaf blocks; beyond kMaxBlocks their
 // queries are answered one by one. 64 -> 128 blocks (`meshdev compare buildings.ply
-// buildings_s40k.ply`, default sampling: queries of such packets 233k -> 104k of about 4.6M; its
+// buildings_s40k.ply`, default sampling: queries of such packets 233k -> 104k of 8.2M; its
 // queries 2-6 % faster; peer_compare --ab 8 buildings_s40k -> buildings +3.5 %, the other pairs
 // within 1 %); 256 was no faster than 128 (docs/performance.md §3, twenty-fifth session).
 constexpr std::size_t kMaxBlocks = 128;
@@ -1661,7 +1661,7 @@ std::size_t TriangleBvh::find_block_packet(const Vec3* points, const QueryHint* 
                      : blocks > from     ? (std::uint64_t{1} << (blocks - from)) - 1
                                          : 0;
     }
-    std::size_t left = blocks;
+    std::size_t left = blocks;  // the bits set in `remaining`
     while (left != 0) {
       F4 lowest = F4::load(dist);
       for (std::size_t b = 4; b < padded; b += 4) lowest = min(lowest, F4::load(dist + b));
