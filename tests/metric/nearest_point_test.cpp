@@ -184,10 +184,24 @@ TEST(NearestPoint, BvhFloatCullingNeverChangesTheAnswer) {
   EXPECT_EQ(queries, 2 * 3 * 2 * 600);
 }
 
-// The build runs subtrees in parallel; the structure must not depend on the thread count.
+// The build runs subtrees in parallel; the structure must not depend on the thread count. The
+// subtrees one thread builds are copied into the tree with their child indices moved: both trees
+// must hold their faces, in SAH order and (faces shuffled) along a Morton curve.
 TEST(NearestPoint, BvhIsTheSameForAnyBuildThreadCount) {
-  const TriMesh m = test::icosphere(6);  // 81,920 faces: above the parallel-task threshold
+  TriMesh shuffled = test::icosphere(6);  // 81,920 faces: above the parallel-task threshold
+  std::shuffle(shuffled.faces.begin(), shuffled.faces.end(), std::mt19937_64(3));
+  const TriangleBvh morton_one(shuffled, {}, 1), morton_two(shuffled, {}, 2);
+  EXPECT_TRUE(morton_two.morton_splits());
+  EXPECT_EQ(morton_one.check_structure(), "");
+  EXPECT_EQ(morton_two.check_structure(), "");
+  EXPECT_EQ(morton_one.node_count(), morton_two.node_count());
+  EXPECT_EQ(morton_one.memory_bytes(), morton_two.memory_bytes());
+
+  const TriMesh m = test::icosphere(6);
   const TriangleBvh one(m, {}, 1), two(m, {}, 2);
+  EXPECT_FALSE(two.morton_splits());
+  EXPECT_EQ(one.check_structure(), "");
+  EXPECT_EQ(two.check_structure(), "");
   EXPECT_EQ(one.node_count(), two.node_count());
   EXPECT_EQ(one.leaf_count(), two.leaf_count());
   EXPECT_EQ(one.depth(), two.depth());
