@@ -942,13 +942,22 @@ int main(int argc, char** argv) {
       max_abs(d_meshdev, d_cgal), max_abs(d_embree, d_cgal));
   if (!d_meshdev.empty()) std::printf("meshdev: %.3f equidistant faces per sample\n", meshdev_ties);
   // The first build ran on OpenMP's default team; set against the first query on that many.
-  for (const BuildAgainstQuery& bq : build_vs_query)
-    if (bq.threads == omp_get_max_threads())
+  if (!build_vs_query.empty()) {
+    const int team = omp_get_max_threads();
+    const auto same = std::find_if(build_vs_query.begin(), build_vs_query.end(),
+                                   [&](const BuildAgainstQuery& bq) { return bq.threads == team; });
+    if (same != build_vs_query.end())
       std::printf(
           "meshdev build of B (%zu faces) against the query of the %zu samples, %d threads: "
           "the process's first build %.4f s / first query run %.4f s = %.2f\n",
-          b.num_faces(), n, bq.threads, bq.first_build, bq.first_query,
-          bq.first_build / bq.first_query);
+          b.num_faces(), n, team, same->first_build, same->first_query,
+          same->first_build / same->first_query);
+    else
+      std::printf(
+          "meshdev build of B (%zu faces): the process's first build %.4f s ran on %d threads, "
+          "and no query row did (--threads): not set against a query\n",
+          b.num_faces(), build_vs_query.front().first_build, team);
+  }
   for (const BuildAgainstQuery& bq : build_vs_query)
     std::printf(
         "meshdev build of B against the query, %d thread(s): best of %d builds %.4f s / best "
