@@ -184,9 +184,9 @@ TEST(NearestPoint, BvhFloatCullingNeverChangesTheAnswer) {
   EXPECT_EQ(queries, 2 * 3 * 2 * 600);
 }
 
-// The build runs subtrees in parallel; the structure must not depend on the thread count. The
-// subtrees one thread builds are copied into the tree with their child indices moved: both trees
-// must hold their faces, in SAH order and (faces shuffled) along a Morton curve.
+// The build runs subtrees in parallel; the structure must not depend on the thread count. Each
+// subtree that one thread builds takes its nodes from its own block of the shared array: the trees
+// must hold their faces, split by binned SAH and (faces shuffled) along a Morton curve.
 TEST(NearestPoint, BvhIsTheSameForAnyBuildThreadCount) {
   TriMesh shuffled = test::icosphere(6);  // 81,920 faces: above the parallel-task threshold
   std::shuffle(shuffled.faces.begin(), shuffled.faces.end(), std::mt19937_64(3));
