@@ -387,12 +387,15 @@ void TriangleBvh::build(int threads) {
   // oracle's arithmetic: such meshes are searched without culling.
   cull_scale_ = extent >= kMinExtent && extent <= kMaxExtent;
   const int team = threads > 0 ? threads : omp_get_max_threads();
-  const auto vertices = static_cast<std::int64_t>(m.positions.size());
+  // A vertex in the float frame (in double), computed where it is read: a stored copy of the
+  // frame was 24 bytes per vertex of memory touched for the first time in a process's first build.
+  const Vec3 frame_origin = origin_;
+  const double frame_scale = scale_;
+  auto frame = [&m, frame_origin, frame_scale](std::uint32_t v) {
+    const Vec3 x = (m.positions[v] - frame_origin) * frame_scale;
+    return std::array<double, 3>{x.x, x.y, x.z};
+  };
   // Scratch arrays are allocated uninitialised and first written by the threads that use them.
-  std::unique_ptr<std::array<double, 3>[]> frame(new std::array<double, 3>[m.positions.size()]);
-#pragma omp parallel for num_threads(team) schedule(static)
-  for (std::int64_t v = 0; v < vertices; ++v)
-    for (int k = 0; k < 3; ++k) frame[v][k] = (m.positions[v][k] - origin_[k]) * scale_;
 
   // Binary SAH tree over the face boxes (float frame).
   std::unique_ptr<Prim[]> prims(new Prim[n]);
@@ -410,14 +413,17 @@ void TriangleBvh::build(int threads) {
 #pragma omp for schedule(static) nowait
     for (std::int64_t f = 0; f < static_cast<std::int64_t>(n); ++f) {
       if (f + kRecordAhead < static_cast<std::int64_t>(n))
-        for (std::uint32_t v : m.faces[f + kRecordAhead]) __builtin_prefetch(&frame[v]);
+        for (std::uint32_t v : m.faces[f + kRecordAhead]) __builtin_prefetch(&m.positions[v]);
+      const std::array<double, 3> x0 = frame(m.faces[f][0]);
       double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) lo[k] = hi[k] = frame[m.faces[f][0]][k];
-      for (int corner = 1; corner < 3; ++corner)
+      for (int k = 0; k < 3; ++k) lo[k] = hi[k] = x0[k];
+      for (int corner = 1; corner < 3; ++corner) {
+        const std::array<double, 3> x = frame(m.faces[f][corner]);
         for (int k = 0; k < 3; ++k) {
-          lo[k] = std::min(lo[k], frame[m.faces[f][corner]][k]);
-          hi[k] = std::max(hi[k], frame[m.faces[f][corner]][k]);
+          lo[k] = std::min(lo[k], x[k]);
+          hi[k] = std::max(hi[k], x[k]);
         }
+      }
       Prim& prim = prims[f];
       for (int k = 0; k < 3; ++k) {
         prim.lo[k] = round_down_to_float(lo[k]);
@@ -760,7 +766,7 @@ void TriangleBvh::build(int threads) {
       const BinaryNode& ahead = tree[leaf_nodes[l + kAhead / 2]];
       for (std::uint32_t lane = 0; lane < ahead.count; ++lane)
         for (std::uint32_t v : m.faces[prims[ahead.index + lane].face()])
-          __builtin_prefetch(&frame[v]);
+          __builtin_prefetch(&m.positions[v]);
     }
     const BinaryNode& b = tree[leaf_nodes[l]];
     Leaf& leaf = leaves_[l];
@@ -776,7 +782,7 @@ void TriangleBvh::build(int threads) {
       leaf.face[lane] = f;
       double c[3][3];  // the float corners, exactly, in double
       for (int corner = 0; corner < 3; ++corner) {
-        const auto& x = frame[m.faces[f][corner]];
+        const std::array<double, 3> x = frame(m.faces[f][corner]);
         double err2 = 0.0;
         for (int k = 0; k < 3; ++k) {
           const float r = static_cast<float>(x[k]);
