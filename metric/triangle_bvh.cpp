@@ -388,7 +388,8 @@ void TriangleBvh::build(int threads) {
   cull_scale_ = extent >= kMinExtent && extent <= kMaxExtent;
   const int team = threads > 0 ? threads : omp_get_max_threads();
   // A vertex in the float frame (in double), computed where it is read: a stored copy of the
-  // frame was 24 bytes per vertex of memory touched for the first time in a process's first build.
+  // frame was 24 bytes per vertex written in a pass of its own (torus1m: 12 MB; the same trees,
+  // docs/performance.md §3, twenty-seventh session).
   const Vec3 frame_origin = origin_;
   const double frame_scale = scale_;
   auto frame = [&m, frame_origin, frame_scale](std::uint32_t v) {

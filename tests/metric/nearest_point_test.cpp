@@ -263,53 +263,6 @@ TEST(NearestPoint, BvhKeepsTiesOfTrianglesTinyInTheFloatFrame) {
   }
 }
 
-// Trees whose blocks hold few faces. A mesh stored out of spatial order is split along a Morton
-// curve of 1024 cells per axis; here face centres lie on those cells (cell c at c + 0.5, with faces
-// at 0 and 1023.5 fixing the grid). In each of 512 regions, 32 faces share a cell and 21 lie alone
-// in cells whose codes differ from theirs in one bit each, so the splits take them off one at a
-// time: 512 x 29 + 1 blocks for 27,138 faces, 1.8 faces per block (3.7-3.9 on the meshes of
-// docs/performance.md). The tree must hold every face in its block's box and give the oracle's
-// answers.
-TEST(NearestPoint, BvhOfBlocksHoldingFewFacesEqualsBruteForce) {
-  TriMesh m;
-  auto add = [&m](double x, double y, double z) {  // a small triangle centred on (x, y, z)
-    const auto v = static_cast<std::uint32_t>(m.positions.size());
-    m.positions.push_back({x - 0.05, y - 0.05, z});
-    m.positions.push_back({x + 0.05, y - 0.05, z});
-    m.positions.push_back({x, y + 0.05, z});
-    m.faces.push_back({v, v + 1, v + 2});
-  };
-  add(0.0, 0.0, 0.0);
-  add(1023.5, 1023.5, 1023.5);
-  for (std::uint32_t region = 0; region < 512; ++region) {
-    std::uint32_t base[3] = {0, 0, 0};  // code bit 21 + b: axis (21 + b) % 3, bit (21 + b) / 3
-    for (std::uint32_t b = 0; b < 9; ++b)
-      if ((region >> b & 1u) != 0) base[(21 + b) % 3] |= 1u << ((21 + b) / 3);
-    for (int k = 0; k < 32; ++k)
-      add(base[0] + 0.5 + 0.01 * (k - 16) / 16, base[1] + 0.5, base[2] + 0.5);
-    for (std::uint32_t j = 0; j <= 20; ++j) {  // code bit j
-      std::uint32_t c[3] = {base[0], base[1], base[2]};
-      c[j % 3] |= 1u << (j / 3);
-      add(c[0] + 0.5, c[1] + 0.5, c[2] + 0.5);
-    }
-  }
-  std::shuffle(m.faces.begin(), m.faces.end(), std::mt19937_64(5));
-  const TriangleBvh bvh(m);
-  ASSERT_TRUE(bvh.morton_splits());
-  EXPECT_GT(2 * bvh.leaf_count(), m.faces.size());  // fewer than 2 faces per block
-  EXPECT_EQ(bvh.check_structure(), "");
-  NearestPointBrute brute(m);
-  std::mt19937_64 rng(31);
-  std::uniform_int_distribution<std::size_t> face(0, m.faces.size() - 1);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
-  std::vector<SurfaceHit> tb, tf;
-  for (int q = 0; q < 300; ++q) {
-    const Vec3 p = m.positions[m.faces[face(rng)][0]] + Vec3{u(rng), u(rng), u(rng)};
-    ASSERT_EQ(bvh.find(p, {}, tb), brute.find(p, {}, tf)) << "query " << q;
-    expect_same(tb, tf);
-  }
-}
-
 // Structure size (issue 3 asks for at most 64 bytes per face) on a closed surface.
 TEST(NearestPoint, BvhStaysBelow64BytesPerFace) {
   const TriMesh sphere = test::icosphere(5);  // 20,480 faces
@@ -418,6 +371,57 @@ std::size_t expect_batch_is_the_oracle(const TriMesh& m, const QueryStream& qs,
     if (::testing::Test::HasFailure()) return batch.packet_queries;
   }
   return batch.packet_queries;
+}
+
+// Trees whose blocks hold few faces. A mesh stored out of spatial order is split along a Morton
+// curve of 1024 cells per axis; here face centres lie on those cells (cell c at c + 0.5, with faces
+// at 0 and 1023.5 fixing the grid). In each of 512 regions, 32 faces share a cell and 21 lie alone
+// in cells whose codes differ from theirs in one bit each, so the splits take them off one at a
+// time: 512 x 29 + 1 blocks for 27,138 faces, 1.8 faces per block (3.7-3.9 on the meshes of
+// docs/performance.md). The tree must hold every face in its block's box and give the oracle's
+// answers, one by one and in batches (packets).
+TEST(NearestPoint, BvhOfBlocksHoldingFewFacesEqualsBruteForce) {
+  TriMesh m;
+  auto add = [&m](double x, double y, double z) {  // a small triangle centred on (x, y, z)
+    const auto v = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.push_back({x - 0.05, y - 0.05, z});
+    m.positions.push_back({x + 0.05, y - 0.05, z});
+    m.positions.push_back({x, y + 0.05, z});
+    m.faces.push_back({v, v + 1, v + 2});
+  };
+  add(0.0, 0.0, 0.0);
+  add(1023.5, 1023.5, 1023.5);
+  for (std::uint32_t region = 0; region < 512; ++region) {
+    std::uint32_t base[3] = {0, 0, 0};  // code bit 21 + b: axis (21 + b) % 3, bit (21 + b) / 3
+    for (std::uint32_t b = 0; b < 9; ++b)
+      if ((region >> b & 1u) != 0) base[(21 + b) % 3] |= 1u << ((21 + b) / 3);
+    for (int k = 0; k < 32; ++k)
+      add(base[0] + 0.5 + 0.01 * (k - 16) / 16, base[1] + 0.5, base[2] + 0.5);
+    for (std::uint32_t j = 0; j <= 20; ++j) {  // code bit j
+      std::uint32_t c[3] = {base[0], base[1], base[2]};
+      c[j % 3] |= 1u << (j / 3);
+      add(c[0] + 0.5, c[1] + 0.5, c[2] + 0.5);
+    }
+  }
+  std::shuffle(m.faces.begin(), m.faces.end(), std::mt19937_64(5));
+  const TriangleBvh bvh(m);
+  ASSERT_TRUE(bvh.morton_splits());
+  EXPECT_GT(2 * bvh.leaf_count(), m.faces.size());  // fewer than 2 faces per block
+  EXPECT_EQ(bvh.check_structure(), "");
+  NearestPointBrute brute(m);
+  std::mt19937_64 rng(31);
+  std::uniform_int_distribution<std::size_t> face(0, m.faces.size() - 1);
+  std::uniform_real_distribution<double> u(-2.0, 2.0);
+  std::vector<SurfaceHit> tb, tf;
+  for (int q = 0; q < 300; ++q) {
+    const Vec3 p = m.positions[m.faces[face(rng)][0]] + Vec3{u(rng), u(rng), u(rng)};
+    ASSERT_EQ(bvh.find(p, {}, tb), brute.find(p, {}, tf)) << "query " << q;
+    expect_same(tb, tf);
+  }
+  for (double offset : {0.0, 0.3}) {
+    const QueryStream qs = coherent_queries(m, 7, 8, offset, false);
+    EXPECT_GT(expect_batch_is_the_oracle(m, qs, "offset " + std::to_string(offset)), 0u);
+  }
 }
 
 TEST(NearestPoint, BvhBatchEqualsBruteForceOnCoherentQueries) {
