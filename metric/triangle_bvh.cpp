@@ -400,7 +400,10 @@ void TriangleBvh::build(int threads) {
 
   // Binary SAH tree over the face boxes (float frame).
   std::unique_ptr<Prim[]> prims(new Prim[n]);
-  std::unique_ptr<std::uint8_t[]> bin_at(new std::uint8_t[n]);  // bin of the face at a position
+  // The bin of the face at a position while its range is split; once a leaf is made of a range,
+  // 1 at the range's first position and 0 at the others (every position is in one leaf, so after
+  // the splits it marks where the leaves start, in the order of the face records).
+  std::unique_ptr<std::uint8_t[]> bin_at(new std::uint8_t[n]);
   // The root's box and centre box are gathered here, per thread, and merged (min and max: the same
   // for any team), instead of in a pass of the root's split on one thread.
   std::vector<Bounds> part_bounds(static_cast<std::size_t>(team)), part_centres(part_bounds);
@@ -481,6 +484,7 @@ void TriangleBvh::build(int threads) {
     if (count <= kLeafSize) {
       tree[node].index = begin;
       tree[node].count = count;
+      for (std::uint32_t i = begin; i < end; ++i) bin_at[i] = i == begin;
       return;
     }
     const Box centres = centre_bounds.box();
@@ -702,20 +706,48 @@ void TriangleBvh::build(int threads) {
 #pragma omp single
   split(split, 0, 0, n, 1, true, root_bounds, root_centres, true, nullptr);
 
-  // Collapse into 4-wide nodes (recursive: the binary depth is bounded). Leaf blocks are numbered
-  // here and filled below, in parallel.
+  // The leaf blocks in the order of the face records: block l holds the faces at positions
+  // leaf_first[l] .. leaf_first[l + 1] - 1 (leaf_first[blocks] = n). The collapse below keeps
+  // each node's children in that order, so it numbers the blocks the same way (depth first), and
+  // the blocks need not wait for it.
+  std::vector<std::uint32_t> leaf_first;
+  {
+    std::vector<std::uint32_t> starts(static_cast<std::size_t>(team) + 1, 0);
+#pragma omp parallel num_threads(team)
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      const auto members = static_cast<std::size_t>(omp_get_num_threads());
+      const std::size_t from = n * t / members, to = n * (t + 1) / members;
+      std::uint32_t own = 0;
+      for (std::size_t i = from; i < to; ++i) own += bin_at[i];
+      starts[t + 1] = own;
+#pragma omp barrier
+#pragma omp single
+      {
+        for (std::size_t k = 1; k <= members; ++k) starts[k] += starts[k - 1];
+        leaf_first.resize(starts[members] + 1);
+        leaf_first[starts[members]] = n;
+      }
+      std::uint32_t at = starts[t];
+      for (std::size_t i = from; i < to; ++i)
+        if (bin_at[i] != 0) leaf_first[at++] = static_cast<std::uint32_t>(i);
+    }
+  }
+  const std::size_t blocks = leaf_first.size() - 1;
+
+  // Collapse into 4-wide nodes (recursive: the binary depth is bounded): the inner child of
+  // largest area is replaced by its two children, in place, until a node has 4 children. One
+  // thread collapses while the others fill the leaf blocks, then joins them.
   nodes_.clear();
   leaves_.clear();
-  const std::size_t used = used_nodes.load();
-  nodes_.reserve(used / 3 + 1);
-  std::vector<std::uint32_t> leaf_nodes;  // binary leaf of each leaf block
-  leaf_nodes.reserve(used / 2 + 1);
+  nodes_.reserve(used_nodes.load() / 3 + 1);
+  std::uint32_t next_block = 0;  // blocks numbered so far, depth first
   depth_ = 0;
   auto collapse = [&](auto&& self, std::uint32_t bi, int depth) -> std::uint32_t {
     depth_ = std::max(depth_, depth);
     if (tree[bi].count > 0) {
-      leaf_nodes.push_back(bi);
-      return kLeafBit | static_cast<std::uint32_t>(leaf_nodes.size() - 1);
+      assert(next_block < blocks && leaf_first[next_block] == tree[bi].index);
+      return kLeafBit | next_block++;
     }
     std::uint32_t kids[4] = {tree[bi].index, tree[bi].index + 1, 0, 0};
     int count = 2;
@@ -729,8 +761,10 @@ void TriangleBvh::build(int threads) {
         }
       if (open < 0) break;
       const std::uint32_t first = tree[kids[open]].index;
+      for (int k = count; k > open + 1; --k) kids[k] = kids[k - 1];
       kids[open] = first;
-      kids[count++] = first + 1;
+      kids[open + 1] = first + 1;
+      ++count;
     }
     const auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.emplace_back();
@@ -746,63 +780,66 @@ void TriangleBvh::build(int threads) {
     }
     return id;
   };
-  root_ = collapse(collapse, 0, 1);
 
   // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
-  const auto leaf_count = static_cast<std::int64_t>(leaf_nodes.size());
-  leaves_.resize(leaf_nodes.size());  // raw storage: each block is written in full below
-  std::vector<double> leaf_size(leaf_nodes.size());  // sum of the faces' longest edges
-  double corner_error2 = 0.0;                        // square roots are taken once, of the maxima
-#pragma omp parallel for num_threads(team) schedule(static) reduction(max : corner_error2)
-  for (std::int64_t l = 0; l < leaf_count; ++l) {
-    // The faces' corners are read through two indirections, in no order the cache foresees:
-    // prefetched kAhead blocks ahead (face indices) and kAhead / 2 ahead (their positions).
-    constexpr std::int64_t kAhead = 16;
-    if (l + kAhead < leaf_count) {
-      const BinaryNode& ahead = tree[leaf_nodes[l + kAhead]];
-      for (std::uint32_t lane = 0; lane < ahead.count; ++lane)
-        __builtin_prefetch(&m.faces[prims[ahead.index + lane].face()]);
-    }
-    if (l + kAhead / 2 < leaf_count) {
-      const BinaryNode& ahead = tree[leaf_nodes[l + kAhead / 2]];
-      for (std::uint32_t lane = 0; lane < ahead.count; ++lane)
-        for (std::uint32_t v : m.faces[prims[ahead.index + lane].face()])
-          __builtin_prefetch(&m.positions[v]);
-    }
-    const BinaryNode& b = tree[leaf_nodes[l]];
-    Leaf& leaf = leaves_[l];
-    double size = 0.0;
-    for (int lane = 0; lane < 4; ++lane) {
-      leaf.margin[lane] = kInf;
-      leaf.face[lane] = kNoFace;
-      for (int corner = 0; corner < 3; ++corner)
-        for (int k = 0; k < 3; ++k) leaf.corner[corner][k][lane] = 0.0f;
-    }
-    for (std::uint32_t lane = 0; lane < b.count; ++lane) {
-      const std::uint32_t f = prims[b.index + lane].face();
-      leaf.face[lane] = f;
-      double c[3][3];  // the float corners, exactly, in double
-      for (int corner = 0; corner < 3; ++corner) {
-        const std::array<double, 3> x = frame(m.faces[f][corner]);
-        double err2 = 0.0;
-        for (int k = 0; k < 3; ++k) {
-          const float r = static_cast<float>(x[k]);
-          leaf.corner[corner][k][lane] = r;
-          c[corner][k] = r;
-          err2 += (c[corner][k] - x[k]) * (c[corner][k] - x[k]);
-        }
-        corner_error2 = std::max(corner_error2, err2);
+  const auto leaf_count = static_cast<std::int64_t>(blocks);
+  leaves_.resize(blocks);                 // raw storage: each block is written in full below
+  std::vector<double> leaf_size(blocks);  // sum of the faces' longest edges
+  double corner_error2 = 0.0;             // square roots are taken once, of the maxima
+  constexpr std::int64_t kBlocksPerTask = 1024;
+#pragma omp parallel num_threads(team)
+  {
+#pragma omp single nowait
+    root_ = collapse(collapse, 0, 1);
+#pragma omp for schedule(dynamic, kBlocksPerTask) reduction(max : corner_error2)
+    for (std::int64_t l = 0; l < leaf_count; ++l) {
+      // The faces' corners are read through two indirections, in no order the cache foresees
+      // where the mesh stores its faces in no spatial order: prefetched kAhead blocks ahead
+      // (face indices) and kAhead / 2 ahead (their positions).
+      constexpr std::int64_t kAhead = 16;
+      if (l + kAhead < leaf_count)
+        for (std::uint32_t i = leaf_first[l + kAhead]; i < leaf_first[l + kAhead + 1]; ++i)
+          __builtin_prefetch(&m.faces[prims[i].face()]);
+      if (l + kAhead / 2 < leaf_count)
+        for (std::uint32_t i = leaf_first[l + kAhead / 2]; i < leaf_first[l + kAhead / 2 + 1]; ++i)
+          for (std::uint32_t v : m.faces[prims[i].face()]) __builtin_prefetch(&m.positions[v]);
+      const std::uint32_t begin = leaf_first[l], count = leaf_first[l + 1] - begin;
+      assert(count >= 1 && count <= kLeafSize);
+      Leaf& leaf = leaves_[l];
+      double size = 0.0;
+      for (int lane = 0; lane < 4; ++lane) {
+        leaf.margin[lane] = kInf;
+        leaf.face[lane] = kNoFace;
+        for (int corner = 0; corner < 3; ++corner)
+          for (int k = 0; k < 3; ++k) leaf.corner[corner][k][lane] = 0.0f;
       }
-      const Vec3 a{c[0][0], c[0][1], c[0][2]}, bb{c[1][0], c[1][1], c[1][2]},
-          cc{c[2][0], c[2][1], c[2][2]};
-      const Vec3 ab = bb - a, ac = cc - a;
-      size += std::sqrt(std::max({squared_norm(ab), squared_norm(ac), squared_norm(cc - bb)}));
-      const double kappa = cull_kappa(ab, ac);
-      if (std::isfinite(kappa))
-        leaf.margin[lane] = round_up_to_float(kMarginConstant * kUnit * (2.0 + kappa));
+      for (std::uint32_t lane = 0; lane < count; ++lane) {
+        const std::uint32_t f = prims[begin + lane].face();
+        leaf.face[lane] = f;
+        double c[3][3];  // the float corners, exactly, in double
+        for (int corner = 0; corner < 3; ++corner) {
+          const std::array<double, 3> x = frame(m.faces[f][corner]);
+          double err2 = 0.0;
+          for (int k = 0; k < 3; ++k) {
+            const float r = static_cast<float>(x[k]);
+            leaf.corner[corner][k][lane] = r;
+            c[corner][k] = r;
+            err2 += (c[corner][k] - x[k]) * (c[corner][k] - x[k]);
+          }
+          corner_error2 = std::max(corner_error2, err2);
+        }
+        const Vec3 a{c[0][0], c[0][1], c[0][2]}, bb{c[1][0], c[1][1], c[1][2]},
+            cc{c[2][0], c[2][1], c[2][2]};
+        const Vec3 ab = bb - a, ac = cc - a;
+        size += std::sqrt(std::max({squared_norm(ab), squared_norm(ac), squared_norm(cc - bb)}));
+        const double kappa = cull_kappa(ab, ac);
+        if (std::isfinite(kappa))
+          leaf.margin[lane] = round_up_to_float(kMarginConstant * kUnit * (2.0 + kappa));
+      }
+      leaf_size[l] = size;
     }
-    leaf_size[l] = size;
   }
+  assert(next_block == blocks);
   corner_error_ = std::sqrt(corner_error2);
   // Summed in leaf order, so the packet extent does not depend on the thread count.
   const double mean_edge = std::accumulate(leaf_size.begin(), leaf_size.end(), 0.0) / n;

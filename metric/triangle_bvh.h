@@ -5,10 +5,11 @@
 // Build: binned SAH (16 bins) on the centres of the faces' boxes into a binary tree with leaves
 //        of at most 4 triangles (subtrees of at most 32 faces: sorted along the axis and split
 //        where SAH is least among the splits into full blocks of 4, which keeps leaf blocks
-//        full), then collapsed into 4-wide nodes (the inner child of largest
-//        area is opened until a node has 4 children). Boxes and triangle corners are stored in
-//        single precision, 4 per block (structure of arrays), in a frame centred on the mesh and
-//        scaled to [-1, 1]. The binning works on 32-byte face records (float box rounded
+//        full), then collapsed into 4-wide nodes (the inner child of largest area is opened in
+//        place until a node has 4 children, so the leaves stay in the face records' order and
+//        the leaf blocks are filled while one thread collapses). Boxes and triangle corners are
+//        stored in single precision, 4 per block (structure of arrays), in a frame centred on the
+//        mesh and scaled to [-1, 1]. The binning works on 32-byte face records (float box rounded
 //        outwards, face index) partitioned in place, with SSE box unions. O(F log F) time,
 //        subtrees and leaf blocks built in parallel (OpenMP); memory_bytes() is about 55-62
 //        bytes per face. Meshes of 4,096 faces or more stored in no spatial order (probed on
