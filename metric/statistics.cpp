@@ -10,6 +10,8 @@
 #include <numeric>
 #include <utility>
 
+#include "metric/simd2.h"
+
 namespace meshdev {
 namespace {
 
@@ -33,7 +35,36 @@ class CompensatedSum {
   }
 
  private:
+  friend class CompensatedSumPair;
   double sum_ = 0.0, comp_ = 0.0;
+};
+
+// Two compensated sums in the two lanes of SSE2 registers (metric/simd2.h): each lane takes
+// CompensatedSum::add's operations in its order, so lane k ends bit for bit where a
+// CompensatedSum given lane k's terms would, at half the instructions. Pass 1's sum and sum of
+// squares are two such sums over the same samples; the adds' throughput, not their latency, was
+// what bounded it.
+class CompensatedSumPair {
+ public:
+  void add(simd::D2 x) {
+    const simd::D2 t = sum_ + x;
+    const simd::D2 z = t - sum_;
+    comp_ = comp_ + ((sum_ - (t - z)) + (x - z));
+    sum_ = t;
+  }
+  // Lane k as a CompensatedSum.
+  CompensatedSum lane(int k) const {
+    double sum[2], comp[2];
+    simd::store(sum, sum_);
+    simd::store(comp, comp_);
+    CompensatedSum s;
+    s.sum_ = sum[k];
+    s.comp_ = comp[k];
+    return s;
+  }
+
+ private:
+  simd::D2 sum_ = simd::D2::splat(0.0), comp_ = simd::D2::splat(0.0);
 };
 
 // The passes cut the values into blocks of kStatisticsBlock, run the blocks on the team and
@@ -287,6 +318,7 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
   for (std::int64_t b = 0; b < blocks; ++b) {
     const std::size_t begin = block_begin(b);
     Moments m{values[begin], values[begin], begin, begin, {}, {}};
+    CompensatedSumPair sums;  // lane 0: sum, lane 1: sum_sq
     for (std::size_t i = begin; i < block_end(b, n); ++i) {
       const double v = values[i];
       if (v < m.min) {
@@ -297,9 +329,11 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
         m.max = v;
         m.argmax = i;
       }
-      m.sum.add(weight(i) * v);
-      m.sum_sq.add(weight(i) * v * v);
+      const double wv = weight(i) * v;  // weight(i) * v * v below: (w v) v, as before
+      sums.add(simd::D2::pair(wv, wv * v));
     }
+    m.sum = sums.lane(0);
+    m.sum_sq = sums.lane(1);
     moments[b] = m;
   }
   Moments all = moments[0];
