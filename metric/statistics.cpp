@@ -28,6 +28,8 @@ class CompensatedSum {
     sum_ = t;
   }
   double value() const { return sum_ + comp_; }
+  // No term added, or only zeros.
+  bool empty() const { return sum_ == 0.0 && comp_ == 0.0; }
   // Adds another sum's terms (its running sum, then its compensation).
   void merge(const CompensatedSum& o) {
     add(o.sum_);
@@ -84,59 +86,87 @@ int team_size(int threads, std::size_t blocks) {
   return static_cast<int>(std::clamp<std::size_t>(blocks, 1, static_cast<std::size_t>(wanted)));
 }
 
-// The quantiles' bins: up to 65,536 bins over [lo, hi]; bin_of is monotone in the value (a
+// The quantiles' bins: up to 65,535 bins over [lo, hi]; bin_of is monotone in the value (a
 // rounded difference, a positive scale, a truncation), so every value of a bin lies below every
 // value of the next, and a quantile is found by counting (or summing weights) bin by bin and
 // then selecting (or sorting) inside its bin only. Filled during the statistics' pass 2 (the
-// threads' counts by add_counts; weights by add on one thread, else by sum_weights), then find()
+// threads' counts by add_counts; weights by sum_weights from the bins noted in pass 2), then find()
 // makes one more pass over the values of the quantiles' bins. O(n) plus the
 // size of those bins (all of n only when they hold nearly everything, e.g. a 0-heavy sample).
+// Weighted, the values equal to the minimum lo (often most of the sample: the exact zeros of
+// coplanar parts) are not binned: their weight is summed apart, per block of pass 2, and comes
+// before bin 0's in the cumulative weight.
 class QuantileBins {
  public:
+  // bin_at's mark of a value at the minimum (no bin has this number).
+  static constexpr std::uint16_t kAtMinimum = 0xffff;
+  // sum_weights' stripes of samples: a constant, so that the sums do not depend on the team.
+  static constexpr int kStripes = 4;
+
   QuantileBins(std::size_t n, double lo, double hi, bool weighted)
-      : n_(n), lo_(lo), bins_(static_cast<int>(std::clamp<std::size_t>(n / 16, 1, 65536))) {
+      : n_(n), lo_(lo), bins_(static_cast<int>(std::clamp<std::size_t>(n / 16, 1, kAtMinimum))) {
     scale_ = hi > lo ? bins_ / (hi - lo) : 0.0;
     if (!std::isfinite(scale_)) scale_ = 0.0;  // a range of denormal width or beyond double
-    if (weighted)
-      sum_.resize(static_cast<std::size_t>(bins_));
-    else
-      count_.resize(static_cast<std::size_t>(bins_), 0);
+    if (!weighted) count_.resize(static_cast<std::size_t>(bins_), 0);  // weighted: sum_weights
   }
   int bin_of(double v) const {
     const double t = (v - lo_) * scale_;  // in [0, bins]
     return t < bins_ - 1 ? static_cast<int>(t) : bins_ - 1;
   }
   int size() const { return bins_; }
-  void add(double v, double w) { sum_[bin_of(v)].add(w); }
+  // Weighted: bin_of(v), or kAtMinimum for a value at the minimum (bin_at, sum_weights).
+  // Without a branch: values at the minimum come and go at random on some samples.
+  std::uint16_t code_of(double v) const {
+    const auto bin = static_cast<unsigned>(bin_of(v));
+    const unsigned at_lo = 0u - static_cast<unsigned>(v == lo_);  // all ones or zero
+    return static_cast<std::uint16_t>(bin ^ ((bin ^ kAtMinimum) & at_lo));
+  }
+  // Weighted: the total weight of the values at the minimum (their blocks' sums merged in block
+  // order by the caller).
+  void set_at_minimum(const CompensatedSum& sum) { at_lo_ = sum; }
   // Adds one thread's counts (per bin, in bin order) to the bins'.
   void add_counts(const std::vector<std::size_t>& counts) {
     for (int b = 0; b < bins_; ++b) count_[b] += counts[b];
   }
-  // The bins' weight sums on a team of more than one thread (one thread adds them in its pass 2):
-  // each thread owns a range of bins and sums their weights in sample order, so every bin's sum
-  // is the one a single thread takes, whatever the team size.
-  // bin_at[i]: bin_of(values[i]), noted in pass 2: 2 bytes read per sample instead of the value
-  // and its bin computed again (statistics_bench, spread weights, 2 threads, 1M values, 4
-  // alternating runs: 12.4-13.9 -> 10.0-12.6 ms; 75 % zeros unchanged, 17.8-21.0 ms).
+  // The bins' weight sums, from pass 2's codes (bin_at[i] = code_of(values[i]): 2 bytes read
+  // per sample instead of the value, whose bin would be computed again). The samples are cut into
+  // kStripes fixed stripes, dealt out to the team; each stripe sums its weights per bin in sample
+  // order, and the stripes' sums are merged bin by bin in stripe order, so every bin's sum is the
+  // same whatever the team size, and every thread has work however the sample crowds into the
+  // bins (a range of bins per thread left most of it to the first). O(n / team + kStripes bins).
   void sum_weights(const std::uint16_t* bin_at, const double* weights, int team) {
-#pragma omp parallel num_threads(team) if (team > 1)
-    {
-      const int me = omp_get_thread_num(), size = omp_get_num_threads();
-      const int first = bins_ * me / size, last = bins_ * (me + 1) / size;
-      for (std::size_t i = 0; i < n_; ++i) {
-        const int k = bin_at[i];
-        if (k >= first && k < last) sum_[k].add(weights[i]);
+    std::vector<std::vector<CompensatedSum>> part(kStripes - 1);
+#pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
+    for (int j = 0; j < kStripes; ++j) {
+      // Without a branch per sample (where values at the minimum come and go at random it
+      // missed often): their weights go to four spare sums past the bins, in turn, so that
+      // consecutive ones do not wait for each other's store.
+      std::vector<CompensatedSum>& into = j == 0 ? sum_ : part[j - 1];
+      into.resize(static_cast<std::size_t>(bins_) + 4);
+      const std::size_t end = n_ * static_cast<std::size_t>(j + 1) / kStripes;
+      for (std::size_t i = n_ * static_cast<std::size_t>(j) / kStripes; i < end; ++i) {
+        const std::size_t k = bin_at[i];
+        const std::size_t spare = static_cast<std::size_t>(bins_) + i % 4;  // i mod 4: in turn
+        const std::size_t at_lo = 0 - static_cast<std::size_t>(k == kAtMinimum);
+        into[k ^ ((k ^ spare) & at_lo)].add(weights[i]);
       }
     }
+    // Stripe by stripe into the first's sums; an empty bin's (exact zeros) changes nothing.
+    const auto bins = static_cast<std::int64_t>(bins_);
+#pragma omp parallel for num_threads(team) schedule(static) if (team > 1)
+    for (std::int64_t b = 0; b < bins; ++b)
+      for (const std::vector<CompensatedSum>& stripe : part)
+        if (!stripe[b].empty()) sum_[b].merge(stripe[b]);
   }
 
   // The quantiles qs[0..4) (ascending) into *outs[q]: unweighted, the order statistics
   // k = ceil(q n) - 1; weighted, the smallest value whose cumulative weight (in ascending value
   // order) reaches q total. The cumulative weight is summed bin by bin (compensated, then
   // element by element inside the quantile's bin); it can differ from a sum in sorted order by
-  // an ulp, which matters only where it lies within an ulp of q total.
+  // an ulp, which matters only where it lies within an ulp of q total. bin_at: pass 2's codes
+  // (code_of; weighted only).
   void find(ConstSpan<double> values, const double* weights, double total, const double qs[4],
-            double* outs[4], int team) const {
+            double* outs[4], int team, const std::uint16_t* bin_at) const {
     int bin[4];
     std::size_t rank[4] = {};
     CompensatedSum below[4];
@@ -150,61 +180,53 @@ class QuantileBins {
         rank[q] = k - before;
       }
     } else {
-      for (int q = 0; q < 4; ++q) {
-        const double target = qs[q] * total;
-        CompensatedSum cum;
-        int b = 0;
-        for (; b < bins_ - 1; ++b) {
-          CompensatedSum next = cum;
-          next.add(sum_[b].value());
-          if (next.value() >= target) break;
-          cum = next;
+      // One walk over the bins for the four (ascending) quantiles: the cumulative weight starts
+      // with the values at the minimum (bin -1: the quantile is the minimum itself); a quantile's
+      // bin is the first whose cumulative weight reaches its target, else the last bin.
+      CompensatedSum cum = at_lo_;
+      int q = 0;
+      for (; q < 4 && cum.value() >= qs[q] * total; ++q) bin[q] = -1;
+      for (int b = 0; q < 4; ++b) {
+        CompensatedSum next = cum;
+        next.add(sum_[b].value());
+        for (; q < 4 && (b == bins_ - 1 || next.value() >= qs[q] * total); ++q) {
+          bin[q] = b;
+          below[q] = cum;
         }
-        bin[q] = b;
-        below[q] = cum;
+        cum = next;
       }
     }
     if (weights == nullptr) {
       select_in_bins(values, bin, rank, outs, team);
       return;
     }
-    // The values and weights of the quantiles' bins, one pass; the values equal to the minimum
-    // lo_ (all in bin 0; often most of the sample, the exact zeros of coplanar parts) are not
-    // kept, only their weight summed (compensated, in sample order by blocks: it can differ from
-    // their sum in sorted order by an ulp, as the bins' sums can). The pairs are sorted below,
-    // so the order the threads gather them in does not matter.
+    // The values and weights of the quantiles' bins (the values at the minimum are in none),
+    // one pass over pass 2's codes. The pairs are sorted below, so the
+    // order the threads gather them in does not matter.
     const std::vector<int> slot = slots_of(bin);
-    const std::size_t blocks = block_count(n_);
-    std::vector<CompensatedSum> at_lo_part(blocks);
     using Pairs = std::vector<std::pair<double, double>>;
-    auto held = gather<Pairs>(slot, team, [&](std::int64_t b, std::vector<Pairs>& mine) {
-      CompensatedSum at_lo;
-      for (std::size_t i = block_begin(b); i < block_end(b, n_); ++i) {
-        const double v = values[i];
-        const int k = slot[bin_of(v)];
-        if (k < 0) continue;
-        if (v == lo_)
-          at_lo.add(weights[i]);
-        else
-          mine[k].push_back({v, weights[i]});
-      }
-      at_lo_part[b] = at_lo;
-    });
-    CompensatedSum at_lo;
-    for (const CompensatedSum& part : at_lo_part) at_lo.merge(part);
+    std::vector<Pairs> held;
+    if (std::any_of(bin, bin + 4, [](int b) { return b >= 0; })) {
+      held = gather<Pairs>(slot, team, [&](std::int64_t b, std::vector<Pairs>& mine) {
+        for (std::size_t i = block_begin(b); i < block_end(b, n_); ++i) {
+          const int k = slot[bin_at[i]];
+          if (k >= 0) mine[k].push_back({values[i], weights[i]});
+        }
+      });
+    }
     std::vector<bool> sorted(held.size(), false);
     for (int q = 0; q < 4; ++q) {
+      if (bin[q] < 0) {
+        *outs[q] = lo_;
+        continue;
+      }
       const double target = qs[q] * total;
       CompensatedSum cum = below[q];
       Pairs& h = held[slot[bin[q]]];
-      if (bin[q] == 0) {
-        cum.add(at_lo.value());
-        if (cum.value() >= target || h.empty()) {
-          *outs[q] = lo_;  // (empty: the bin's sum reached the target; its values round short)
-          continue;
-        }
+      if (h.empty()) {  // the last bin, reached without its target (the sums round short), empty
+        *outs[q] = lo_;
+        continue;
       }
-      assert(!h.empty());
       // Sorting (value, weight) pairs: equal values give the same quantile in any order, so an
       // unstable sort is deterministic here.
       if (!sorted[slot[bin[q]]]) std::sort(h.begin(), h.end());
@@ -221,12 +243,13 @@ class QuantileBins {
   }
 
  private:
-  // slot[b]: the index of bin b among the quantiles' distinct bins, -1 for the other bins.
+  // slot[b]: the index of bin b among the quantiles' distinct bins (bin -1, the minimum, has
+  // none), -1 for the other bins and for the code kAtMinimum (the last entry).
   std::vector<int> slots_of(const int bin[4]) const {
-    std::vector<int> slot(static_cast<std::size_t>(bins_), -1);
+    std::vector<int> slot(std::size_t{kAtMinimum} + 1, -1);
     int slots = 0;
     for (int q = 0; q < 4; ++q)
-      if (slot[bin[q]] < 0) slot[bin[q]] = slots++;
+      if (bin[q] >= 0 && slot[bin[q]] < 0) slot[bin[q]] = slots++;
     return slot;
   }
 
@@ -294,6 +317,7 @@ class QuantileBins {
   int bins_;
   std::vector<std::size_t> count_;
   std::vector<CompensatedSum> sum_;
+  CompensatedSum at_lo_;  // weighted: the weight of the values at the minimum
 };
 
 // The passes over the values, for a weight function (all 1, or the given weights); the moments'
@@ -304,6 +328,7 @@ template <typename Weight>
 void fill(ConstSpan<double> values, Weight weight, const double* area_weights, int histogram_bins,
           int team, Statistics& s) {
   const bool area_weighted = area_weights != nullptr;
+  constexpr std::size_t kWays = 4;  // weighted histogram: interleaved sums per bin (pass 2)
   const std::size_t n = values.size();
   const auto blocks = static_cast<std::int64_t>(block_count(n));
 
@@ -368,41 +393,50 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
   for (int b = 0; b <= bins; ++b) h.edges[b] = lo + (hi - lo) * b / bins;
   h.counts.assign(nbins, 0);
   QuantileBins quantile_bins(n, s.min, s.max, area_weighted);
-  // Each sample's quantile bin, for sum_weights (at most 65,536 bins: a bin number fits 16 bits).
-  std::unique_ptr<std::uint16_t[]> bin_at(area_weighted && team > 1 ? new std::uint16_t[n]
-                                                                    : nullptr);
+  // Each sample's quantile bin or kAtMinimum, for sum_weights and find (at most 65,535 bins: a
+  // bin number fits 16 bits).
+  std::unique_ptr<std::uint16_t[]> bin_at(area_weighted ? new std::uint16_t[n] : nullptr);
   std::vector<CompensatedSum> var_part(static_cast<std::size_t>(blocks));
-  std::vector<CompensatedSum> wbin_part(area_weighted ? moments.size() * nbins : 0);
+  std::vector<CompensatedSum> at_lo_part(area_weighted ? var_part.size() : 0);
+  std::vector<CompensatedSum> wbin_part(area_weighted ? moments.size() * kWays * nbins : 0);
   std::vector<std::vector<std::size_t>> hist_of(static_cast<std::size_t>(team));
   std::vector<std::vector<std::size_t>> quantile_counts_of(static_cast<std::size_t>(team));
 #pragma omp parallel num_threads(team) if (team > 1)
   {
     std::vector<std::size_t> hist(nbins, 0);
+    std::vector<std::size_t> hist_ways(area_weighted ? kWays * nbins : 0, 0);
     std::vector<std::size_t> quantile_counts(
         area_weighted ? 0 : static_cast<std::size_t>(quantile_bins.size()), 0);
 #pragma omp for schedule(static)
     for (std::int64_t blk = 0; blk < blocks; ++blk) {
-      CompensatedSum var;
+      CompensatedSum var, at_lo;
       CompensatedSum* wbin =
-          area_weighted ? &wbin_part[static_cast<std::size_t>(blk) * nbins] : nullptr;
+          area_weighted ? &wbin_part[static_cast<std::size_t>(blk) * kWays * nbins] : nullptr;
+      // Weighted: sample i's histogram count and weight go to way i mod kWays of its bin (the
+      // ways are added up after the pass, the weights' sums merged in way order): consecutive
+      // samples mostly share a bin, and each sample's compensated add waited for the one before
+      // on the same address (its load, four dependent adds, its store).
       for (std::size_t i = block_begin(blk); i < block_end(blk, n); ++i) {
         const double v = values[i];
         var.add(weight(i) * (v - s.mean) * (v - s.mean));
         int b = hi > lo ? static_cast<int>((v - lo) / (hi - lo) * bins) : 0;
         b = std::clamp(b, 0, bins - 1);
-        ++hist[b];
         if (!area_weighted) {
+          ++hist[b];
           ++quantile_counts[quantile_bins.bin_of(v)];
           continue;
         }
-        wbin[b].add(weight(i));
-        if (team == 1)
-          quantile_bins.add(v, weight(i));
-        else
-          bin_at[i] = static_cast<std::uint16_t>(quantile_bins.bin_of(v));
+        const std::size_t way = i % kWays;
+        ++hist_ways[way * nbins + static_cast<std::size_t>(b)];
+        wbin[way * nbins + static_cast<std::size_t>(b)].add(weight(i));
+        // Without a branch (w x 1 = w, w x 0 = +0, and adding +0 leaves the sum's bits).
+        at_lo.add(static_cast<double>(v == s.min) * weight(i));
+        bin_at[i] = quantile_bins.code_of(v);
       }
       var_part[blk] = var;
+      if (area_weighted) at_lo_part[static_cast<std::size_t>(blk)] = at_lo;
     }
+    for (std::size_t k = 0; k < hist_ways.size(); ++k) hist[k % nbins] += hist_ways[k];
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
     hist_of[me] = std::move(hist);
     quantile_counts_of[me] = std::move(quantile_counts);
@@ -416,7 +450,12 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
     for (std::size_t b = 0; b < nbins; ++b) h.counts[b] += hist_of[t][b];
     if (!area_weighted) quantile_bins.add_counts(quantile_counts_of[t]);
   }
-  if (area_weighted && team > 1) quantile_bins.sum_weights(bin_at.get(), area_weights, team);
+  if (area_weighted) quantile_bins.sum_weights(bin_at.get(), area_weights, team);
+  if (area_weighted) {
+    CompensatedSum at_lo;
+    for (const CompensatedSum& part : at_lo_part) at_lo.merge(part);
+    quantile_bins.set_at_minimum(at_lo);
+  }
 
   // Equal weights: each bin's share is its count's (exactly, without summing weights).
   h.weight_fraction.resize(nbins);
@@ -426,14 +465,16 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
       continue;
     }
     CompensatedSum share;
-    for (std::size_t blk = 0; blk < moments.size(); ++blk) share.merge(wbin_part[blk * nbins + b]);
+    for (std::size_t blk = 0; blk < moments.size(); ++blk)
+      for (std::size_t way = 0; way < kWays; ++way)
+        share.merge(wbin_part[(blk * kWays + way) * nbins + b]);
     h.weight_fraction[b] = share.value() / s.weight_sum;
   }
 
   // Weighted quantiles: the smallest value whose cumulative weight reaches q of the total.
   const double qs[4] = {0.50, 0.90, 0.95, 0.99};
   double* outs[4] = {&s.p50, &s.p90, &s.p95, &s.p99};
-  quantile_bins.find(values, area_weights, s.weight_sum, qs, outs, team);
+  quantile_bins.find(values, area_weights, s.weight_sum, qs, outs, team, bin_at.get());
 }
 
 // What the statistics need to know of the weights: uniform (absent or all zero: every sample

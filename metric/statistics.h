@@ -37,7 +37,7 @@ constexpr std::size_t kStatisticsBlock = std::size_t{1} << 15;
 // the calling thread); the result is the same for every team size.
 // Precondition: weights empty or the same size as values, weights >= 0. O(n) (quantiles: a
 // histogram pass, then selection inside the quantiles' bins; O(n log n) only if they hold most
-// values); about 3 passes over the values plus, for area weights, one per thread.
+// values); about 3 passes over the values plus, for area weights, one over their quantile bins.
 Statistics compute_statistics(ConstSpan<double> values, const std::vector<double>& weights,
                               int histogram_bins = 32, int threads = 1);
 
