@@ -409,7 +409,7 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
         area_weighted ? 0 : static_cast<std::size_t>(quantile_bins.size()), 0);
 #pragma omp for schedule(static)
     for (std::int64_t blk = 0; blk < blocks; ++blk) {
-      CompensatedSum var, at_lo;
+      CompensatedSumPair sums;  // lane 0: the variance's sum; 1: the weight at the minimum
       CompensatedSum* wbin =
           area_weighted ? &wbin_part[static_cast<std::size_t>(blk) * kWays * nbins] : nullptr;
       // Weighted: sample i's histogram count and weight go to way i mod kWays of its bin (the
@@ -418,7 +418,10 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
       // on the same address (its load, four dependent adds, its store).
       for (std::size_t i = block_begin(blk); i < block_end(blk, n); ++i) {
         const double v = values[i];
-        var.add(weight(i) * (v - s.mean) * (v - s.mean));
+        // The weight at the minimum without a branch (w x 1 = w, w x 0 = +0, and adding +0
+        // leaves the sum's bits); 0 unweighted.
+        const double at_lo = area_weighted ? static_cast<double>(v == s.min) * weight(i) : 0.0;
+        sums.add(simd::D2::pair(weight(i) * (v - s.mean) * (v - s.mean), at_lo));
         int b = hi > lo ? static_cast<int>((v - lo) / (hi - lo) * bins) : 0;
         b = std::clamp(b, 0, bins - 1);
         if (!area_weighted) {
@@ -429,12 +432,10 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
         const std::size_t way = i % kWays;
         ++hist_ways[way * nbins + static_cast<std::size_t>(b)];
         wbin[way * nbins + static_cast<std::size_t>(b)].add(weight(i));
-        // Without a branch (w x 1 = w, w x 0 = +0, and adding +0 leaves the sum's bits).
-        at_lo.add(static_cast<double>(v == s.min) * weight(i));
         bin_at[i] = quantile_bins.code_of(v);
       }
-      var_part[blk] = var;
-      if (area_weighted) at_lo_part[static_cast<std::size_t>(blk)] = at_lo;
+      var_part[blk] = sums.lane(0);
+      if (area_weighted) at_lo_part[static_cast<std::size_t>(blk)] = sums.lane(1);
     }
     for (std::size_t k = 0; k < hist_ways.size(); ++k) hist[k % nbins] += hist_ways[k];
     const auto me = static_cast<std::size_t>(omp_get_thread_num());
