@@ -201,8 +201,9 @@ class QuantileBins {
       return;
     }
     // The values and weights of the quantiles' bins (the values at the minimum are in none),
-    // one pass over pass 2's codes. The pairs are sorted below, so the
-    // order the threads gather them in does not matter.
+    // one pass over pass 2's codes. The pairs are sorted below, so the order the threads gather
+    // them in does not matter.
+    assert(bin_at != nullptr);
     const std::vector<int> slot = slots_of(bin);
     using Pairs = std::vector<std::pair<double, double>>;
     std::vector<Pairs> held;
@@ -451,8 +452,8 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
     for (std::size_t b = 0; b < nbins; ++b) h.counts[b] += hist_of[t][b];
     if (!area_weighted) quantile_bins.add_counts(quantile_counts_of[t]);
   }
-  if (area_weighted) quantile_bins.sum_weights(bin_at.get(), area_weights, team);
   if (area_weighted) {
+    quantile_bins.sum_weights(bin_at.get(), area_weights, team);
     CompensatedSum at_lo;
     for (const CompensatedSum& part : at_lo_part) at_lo.merge(part);
     quantile_bins.set_at_minimum(at_lo);
