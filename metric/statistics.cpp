@@ -98,13 +98,13 @@ int team_size(int threads, std::size_t blocks) {
 // before bin 0's in the cumulative weight.
 class QuantileBins {
  public:
-  // bin_at's mark of a value at the minimum (no bin has this number).
-  static constexpr std::uint16_t kAtMinimum = 0xffff;
   // sum_weights' stripes of samples: a constant, so that the sums do not depend on the team.
   static constexpr int kStripes = 4;
+  // sum_weights' spare sums, past the bins, for the weights of values at the minimum.
+  static constexpr std::size_t kSpares = 4;
 
   QuantileBins(std::size_t n, double lo, double hi, bool weighted)
-      : n_(n), lo_(lo), bins_(static_cast<int>(std::clamp<std::size_t>(n / 16, 1, kAtMinimum))) {
+      : n_(n), lo_(lo), bins_(static_cast<int>(std::clamp<std::size_t>(n / 16, 1, 65535))) {
     scale_ = hi > lo ? bins_ / (hi - lo) : 0.0;
     if (!std::isfinite(scale_)) scale_ = 0.0;  // a range of denormal width or beyond double
     if (!weighted) count_.resize(static_cast<std::size_t>(bins_), 0);  // weighted: sum_weights
@@ -114,12 +114,13 @@ class QuantileBins {
     return t < bins_ - 1 ? static_cast<int>(t) : bins_ - 1;
   }
   int size() const { return bins_; }
-  // Weighted: bin_of(v), or kAtMinimum for a value at the minimum (bin_at, sum_weights).
-  // Without a branch: values at the minimum come and go at random on some samples.
+  // Weighted: bin_of(v), or the number of bins (one past the last bin: at most 65,535, so a code
+  // fits 16 bits) for a value at the minimum (bin_at, sum_weights, find). Without a branch:
+  // values at the minimum come and go at random on some samples.
   std::uint16_t code_of(double v) const {
     const auto bin = static_cast<unsigned>(bin_of(v));
     const unsigned at_lo = 0u - static_cast<unsigned>(v == lo_);  // all ones or zero
-    return static_cast<std::uint16_t>(bin ^ ((bin ^ kAtMinimum) & at_lo));
+    return static_cast<std::uint16_t>(bin ^ ((bin ^ static_cast<unsigned>(bins_)) & at_lo));
   }
   // Weighted: the total weight of the values at the minimum (their blocks' sums merged in block
   // order by the caller).
@@ -139,16 +140,16 @@ class QuantileBins {
 #pragma omp parallel for num_threads(team) schedule(static, 1) if (team > 1)
     for (int j = 0; j < kStripes; ++j) {
       // Without a branch per sample (where values at the minimum come and go at random it
-      // missed often): their weights go to four spare sums past the bins, in turn, so that
-      // consecutive ones do not wait for each other's store.
+      // missed often): their code is the first spare sum's index, and sample i's weight goes to
+      // spare i mod kSpares, so that consecutive ones do not wait for each other's store.
       std::vector<CompensatedSum>& into = j == 0 ? sum_ : part[j - 1];
-      into.resize(static_cast<std::size_t>(bins_) + 4);
+      into.resize(static_cast<std::size_t>(bins_) + kSpares);
       const std::size_t end = n_ * static_cast<std::size_t>(j + 1) / kStripes;
       for (std::size_t i = n_ * static_cast<std::size_t>(j) / kStripes; i < end; ++i) {
         const std::size_t k = bin_at[i];
-        const std::size_t spare = static_cast<std::size_t>(bins_) + i % 4;  // i mod 4: in turn
-        const std::size_t at_lo = 0 - static_cast<std::size_t>(k == kAtMinimum);
-        into[k ^ ((k ^ spare) & at_lo)].add(weights[i]);
+        const std::size_t at_lo =
+            0 - static_cast<std::size_t>(k == static_cast<std::size_t>(bins_));
+        into[k + (i % kSpares & at_lo)].add(weights[i]);
       }
     }
     // Stripe by stripe into the first's sums; an empty bin's (exact zeros) changes nothing.
@@ -245,9 +246,9 @@ class QuantileBins {
 
  private:
   // slot[b]: the index of bin b among the quantiles' distinct bins (bin -1, the minimum, has
-  // none), -1 for the other bins and for the code kAtMinimum (the last entry).
+  // none), -1 for the other bins and for code_of's code of the minimum (the last entry).
   std::vector<int> slots_of(const int bin[4]) const {
-    std::vector<int> slot(std::size_t{kAtMinimum} + 1, -1);
+    std::vector<int> slot(static_cast<std::size_t>(bins_) + 1, -1);
     int slots = 0;
     for (int q = 0; q < 4; ++q)
       if (bin[q] >= 0 && slot[bin[q]] < 0) slot[bin[q]] = slots++;
@@ -394,8 +395,7 @@ void fill(ConstSpan<double> values, Weight weight, const double* area_weights, i
   for (int b = 0; b <= bins; ++b) h.edges[b] = lo + (hi - lo) * b / bins;
   h.counts.assign(nbins, 0);
   QuantileBins quantile_bins(n, s.min, s.max, area_weighted);
-  // Each sample's quantile bin or kAtMinimum, for sum_weights and find (at most 65,535 bins: a
-  // bin number fits 16 bits).
+  // Each sample's code_of (its quantile bin, or the minimum's code), for sum_weights and find.
   std::unique_ptr<std::uint16_t[]> bin_at(area_weighted ? new std::uint16_t[n] : nullptr);
   std::vector<CompensatedSum> var_part(static_cast<std::size_t>(blocks));
   std::vector<CompensatedSum> at_lo_part(area_weighted ? var_part.size() : 0);
