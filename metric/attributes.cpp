@@ -20,6 +20,16 @@ AttributeChannel computed_normals(const TriMesh& m, NormalWeighting w, int threa
   return c;
 }
 
+// A's computed normals: from the cache where it has them for `w`, else computed (and kept there).
+AttributeChannel a_normals(const TriMesh& a, NormalWeighting w, int threads,
+                           ReferenceAttributes* cache) {
+  if (cache == nullptr) return computed_normals(a, w, threads);
+  for (const auto& [weighting, channel] : cache->normals)
+    if (weighting == w) return channel;
+  cache->normals.emplace_back(w, computed_normals(a, w, threads));
+  return cache->normals.back().second;
+}
+
 void add_channel_measures(const AttributeChannel& c, std::vector<Measure>& out) {
   switch (c.kind) {
     case AttributeKind::kNormal:
@@ -89,7 +99,8 @@ NormalSource parse_normal_source(const std::string& text) {
 }
 
 AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const AttributeOptions& options,
-                              const std::string& label_a, const std::string& label_b) {
+                              const std::string& label_a, const std::string& label_b,
+                              ReferenceAttributes* a_cache) {
   AttributePlan plan;
   plan.a.mesh = &a;
   plan.b.mesh = &b;
@@ -124,7 +135,7 @@ AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const Attribut
         const NormalWeighting w = source == NormalSource::kArea    ? NormalWeighting::kArea
                                   : source == NormalSource::kAngle ? NormalWeighting::kAngle
                                                                    : NormalWeighting::kUniform;
-        plan.a.computed.push_back(computed_normals(a, w, options.threads));
+        plan.a.computed.push_back(a_normals(a, w, options.threads, a_cache));
         plan.b.computed.push_back(computed_normals(b, w, options.threads));
         plan.normal_source = source == NormalSource::kArea ? "computed (area-weighted)"
                              : source == NormalSource::kAngle
@@ -152,8 +163,13 @@ AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const Attribut
         if (m.texture_file.empty())
           throw InvalidInput("'texture' was requested but " + (k == 0 ? label_a : label_b) +
                              " names no texture image (OBJ map_Kd or PLY comment TextureFile)");
+        if (k == 0 && a_cache != nullptr && a_cache->texture) {
+          plan.a.texture = a_cache->texture;
+          continue;
+        }
         (k == 0 ? plan.a : plan.b).texture =
             std::make_shared<const Image>(load_image(m.texture_file));
+        if (k == 0 && a_cache != nullptr) a_cache->texture = plan.a.texture;
       }
       add_texture_measures(plan.measures);
       continue;

@@ -7,10 +7,12 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "metric/mesh.h"
 #include "metric/texture_image.h"
+#include "metric/vertex_normals.h"
 
 namespace meshdev {
 
@@ -81,10 +83,21 @@ struct AttributePlan {
   std::string normal_source;  // what was used: "file", "computed (uniform average)", ...
 };
 
+// What plan_attributes derives from mesh A alone, kept for the next plan with the same A
+// (ComparisonReference, metric/compare.h: a sweep compares one A with many simplifications): A's
+// computed normals, per weighting, and A's texture image. Empty until a plan fills it.
+struct ReferenceAttributes {
+  std::vector<std::pair<NormalWeighting, AttributeChannel>> normals;
+  std::shared_ptr<const Image> texture;
+};
+
 // Resolves `options` against both meshes (labels name them in errors). Throws InvalidInput for
-// an unknown or one-sided attribute, or dimension mismatch. O(V + F) for computed normals.
+// an unknown or one-sided attribute, or dimension mismatch. With `a_cache` (made for this A and
+// no other), A's computed normals and texture image are taken from it where it has them and put
+// into it where it has not: the same plan either way. O(V + F) for computed normals.
 AttributePlan plan_attributes(const TriMesh& a, const TriMesh& b, const AttributeOptions& options,
-                              const std::string& label_a, const std::string& label_b);
+                              const std::string& label_a, const std::string& label_b,
+                              ReferenceAttributes* a_cache = nullptr);
 
 // Component k of the value at barycentrics `bary` between the corner values a, b and c: the one
 // barycentric mix of the metric (interpolate, and the deviation loop's inline path), so both

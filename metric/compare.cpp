@@ -17,10 +17,19 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// Where a direction keeps what it makes from one mesh for later comparisons (ComparisonReference):
+// the samples of the sampled mesh, the index over the searched mesh. A null pointer: nothing is
+// kept; an empty store is filled; a filled one is used (made for the same mesh and options).
+struct DirectionStores {
+  std::optional<SampleSequence>* samples = nullptr;
+  std::unique_ptr<NearestPointIndex>* index = nullptr;
+};
+
 DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
                               const std::vector<Measure>& measures, const CompareOptions& o,
                               const SamplingOptions& sampling, double diagonal,
-                              const std::string& from_label, const std::string& to_label) {
+                              const std::string& from_label, const std::string& to_label,
+                              const DirectionStores& stores) {
   DirectionResult r;
   r.from = from_label;
   r.to = to_label;
@@ -34,11 +43,15 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   // no per-sample output is kept, are made a chunk at a time as they are queried instead of
   // stored (72 bytes each): the same samples and results.
   auto t0 = Clock::now();
-  std::optional<SampleSequence> generated;
+  std::optional<SampleSequence> local_sequence;
+  const SampleSequence* generated = nullptr;
   SampleSet samples;
   double equal_weight = 0.0;
   if (!o.keep_samples && sequence_sampling(sampling)) {
-    generated.emplace(*from.mesh, sampling, diagonal);
+    std::optional<SampleSequence>& store = stores.samples ? *stores.samples : local_sequence;
+    r.samples_reused = store.has_value();
+    if (!store) store.emplace(*from.mesh, sampling, diagonal);
+    generated = &*store;
     r.sampling = generated->description();
     r.step = generated->step();
     r.samples = generated->size();
@@ -56,8 +69,10 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   auto sample = [&](std::size_t i) { return generated ? generated->at(i) : samples.samples[i]; };
 
   t0 = Clock::now();
-  std::unique_ptr<NearestPointIndex> index =
-      make_nearest_point_index(*to.mesh, o.index, o.ties, o.threads);
+  std::unique_ptr<NearestPointIndex> local_index;
+  std::unique_ptr<NearestPointIndex>& index = stores.index ? *stores.index : local_index;
+  r.index_reused = index != nullptr;
+  if (!index) index = make_nearest_point_index(*to.mesh, o.index, o.ties, o.threads);
   r.seconds_index = seconds_since(t0);
   r.index = index->name();
 
@@ -141,23 +156,30 @@ MeshSummary summarize(const TriMesh& mesh, const std::string& label, int threads
   return s;
 }
 
-ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
-                                const std::string& label_a, const std::string& label_b) {
-  const auto start = Clock::now();
-  validate(a, label_a, options.threads);
-  validate(b, label_b, options.threads);
-  if (a.positions.empty()) throw InvalidInput(label_a + " has no vertices");
-  if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
+namespace {
 
+// What a comparison keeps of mesh A for the next one (ComparisonReference); null: nothing.
+struct ReferenceStores {
+  ReferenceAttributes* attributes = nullptr;
+  std::optional<SampleSequence>* samples = nullptr;     // A's samples (forward direction)
+  std::unique_ptr<NearestPointIndex>* index = nullptr;  // the index over A (backward direction)
+};
+
+// The comparison of A (summarised as `summary_a`) with B, both validated and with vertices.
+ComparisonResult compare_prepared(const TriMesh& a, const MeshSummary& summary_a, const TriMesh& b,
+                                  const CompareOptions& options, const std::string& label_b,
+                                  const ReferenceStores& stores, Clock::time_point start) {
+  const std::string& label_a = summary_a.label;
   ComparisonResult r;
   r.options = options;
-  r.a = summarize(a, label_a, options.threads);
+  r.a = summary_a;
   r.b = summarize(b, label_b, options.threads);
   r.diagonal = r.a.box.diagonal();
 
   AttributeOptions attribute_options = options.attributes;
   attribute_options.threads = options.threads;
-  AttributePlan plan = plan_attributes(a, b, attribute_options, label_a, label_b);
+  AttributePlan plan =
+      plan_attributes(a, b, attribute_options, label_a, label_b, stores.attributes);
   r.measures = plan.measures;
   r.normal_source = plan.normal_source;
 
@@ -166,11 +188,11 @@ ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const Compar
   if (sampling.target_count == 0)
     sampling.target_count = 10 * std::max(a.num_faces(), b.num_faces());
   if (options.direction != Direction::kBackward)
-    r.forward =
-        run_direction(plan.a, plan.b, r.measures, options, sampling, r.diagonal, label_a, label_b);
+    r.forward = run_direction(plan.a, plan.b, r.measures, options, sampling, r.diagonal, label_a,
+                              label_b, {stores.samples, nullptr});
   if (options.direction != Direction::kForward)
-    r.backward =
-        run_direction(plan.b, plan.a, r.measures, options, sampling, r.diagonal, label_b, label_a);
+    r.backward = run_direction(plan.b, plan.a, r.measures, options, sampling, r.diagonal, label_b,
+                               label_a, {nullptr, stores.index});
   if (r.forward && r.backward) {
     for (std::size_t m = 0; m < r.measures.size(); ++m) {
       const Statistics& f = r.forward->stats[m];
@@ -191,6 +213,68 @@ ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const Compar
   }
   r.seconds = seconds_since(start);
   return r;
+}
+
+// Whether two sampling options give the same samples of one mesh (the thread count does not
+// change them). O(1).
+bool same_samples(const SamplingOptions& x, const SamplingOptions& y) {
+  return x.vertices == y.vertices && x.edges == y.edges && x.faces == y.faces && x.step == y.step &&
+         x.step_fraction == y.step_fraction && x.target_count == y.target_count && x.seed == y.seed;
+}
+
+}  // namespace
+
+struct ComparisonReference::Cache {
+  ReferenceAttributes attributes;
+  SamplingOptions sampling;                // what `samples` was made with
+  std::optional<SampleSequence> samples;   // A's samples for the forward direction
+  IndexKind index_kind = IndexKind::kBvh;  // what `index` was made with
+  TieOptions ties;
+  std::unique_ptr<NearestPointIndex> index;  // over A, for the backward direction
+};
+
+ComparisonReference::ComparisonReference(const TriMesh& a, std::string label, int threads)
+    : mesh_(&a), label_(std::move(label)), cache_(std::make_unique<Cache>()) {
+  validate(a, label_, threads);
+  if (a.positions.empty()) throw InvalidInput(label_ + " has no vertices");
+  summary_ = summarize(a, label_, threads);
+}
+
+ComparisonReference::~ComparisonReference() = default;
+
+ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
+                                const CompareOptions& options, const std::string& label_b) {
+  const auto start = Clock::now();
+  validate(b, label_b, options.threads);
+  if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
+  ComparisonReference::Cache& cache = *a.cache_;
+  // A's samples as compare_prepared will ask for them: kept only for the same options.
+  SamplingOptions sampling = options.sampling;
+  if (sampling.target_count == 0)
+    sampling.target_count = 10 * std::max(a.mesh().num_faces(), b.num_faces());
+  if (cache.samples && !same_samples(cache.sampling, sampling)) cache.samples.reset();
+  if (!cache.samples) cache.sampling = sampling;
+  if (cache.index &&
+      (cache.index_kind != options.index || cache.ties.relative != options.ties.relative ||
+       cache.ties.absolute_fraction != options.ties.absolute_fraction))
+    cache.index.reset();
+  if (!cache.index) {
+    cache.index_kind = options.index;
+    cache.ties = options.ties;
+  }
+  return compare_prepared(a.mesh(), a.summary(), b, options, label_b,
+                          {&cache.attributes, &cache.samples, &cache.index}, start);
+}
+
+ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
+                                const std::string& label_a, const std::string& label_b) {
+  const auto start = Clock::now();
+  validate(a, label_a, options.threads);
+  validate(b, label_b, options.threads);
+  if (a.positions.empty()) throw InvalidInput(label_a + " has no vertices");
+  if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
+  return compare_prepared(a, summarize(a, label_a, options.threads), b, options, label_b, {},
+                          start);
 }
 
 }  // namespace meshdev

@@ -4,6 +4,7 @@
 // not symmetric, so both directions are reported with their average and the symmetric maximum
 // (Hausdorff distance for geometry).
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -65,6 +66,9 @@ struct DirectionResult {
   double cohen_max_uv_gap = 0;     // the largest UV distance of such a sample to B's UVs
   double seconds_sampling = 0, seconds_index = 0, seconds_query = 0;
   std::string index;  // the nearest-point index used
+  // Through a ComparisonReference: whether the samples (the step search) and the index were
+  // those an earlier comparison made (their seconds then near 0).
+  bool samples_reused = false, index_reused = false;
   // Only with keep_samples:
   SampleSet sample_set;
   SampleDeviations deviations;
@@ -92,6 +96,46 @@ struct ComparisonResult {
 // no samples, a requested attribute missing). Time: O(samples x query) plus O(F log F) builds.
 ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
                                 const std::string& label_a = "A", const std::string& label_b = "B");
+
+// Mesh A checked and summarised once for comparisons with many meshes B (a sweep compares one
+// mesh with each of its simplifications): compare_meshes(reference, b, ...) returns what
+// compare_meshes(a, b, ...) returns, bit for bit except the seconds and DirectionResult's reuse
+// flags, without doing again what depends on A alone. It keeps, made by the first comparison
+// that needs them: A's computed normals and texture image; the samples of A (the step search of
+// the forward direction), for samples made on demand (no edge samples, no keep_samples) and the
+// same sampling options, which the default count 10 x max(faces of A, faces of B) keeps while B
+// has no more faces than A; and the nearest-point index over A (the backward direction's
+// target) for the same index kind and tie options. Holds them until destroyed (the BVH about 61
+// bytes per face of A). `a` must outlive it. Not thread-safe: one comparison at a time (each
+// uses the OpenMP team inside).
+class ComparisonReference {
+ public:
+  // Validates A (InvalidInput as compare_meshes throws it, naming `label`) and summarises it on
+  // `threads` OpenMP threads (0 = the default). O(V + F).
+  ComparisonReference(const TriMesh& a, std::string label, int threads = 0);
+  ComparisonReference(const ComparisonReference&) = delete;
+  ComparisonReference& operator=(const ComparisonReference&) = delete;
+  ~ComparisonReference();
+
+  const TriMesh& mesh() const { return *mesh_; }
+  const std::string& label() const { return label_; }
+  const MeshSummary& summary() const { return summary_; }
+
+ private:
+  friend ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
+                                         const CompareOptions& options, const std::string& label_b);
+  struct Cache;
+  const TriMesh* mesh_;
+  std::string label_;
+  MeshSummary summary_;
+  std::unique_ptr<Cache> cache_;
+};
+
+// compare_meshes(a.mesh(), b, options, a.label(), label_b): the same result except the seconds
+// and the reuse flags, reusing and filling a's kept values (see ComparisonReference). Throws as
+// compare_meshes does. Time: that of compare_meshes less what a kept.
+ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
+                                const CompareOptions& options, const std::string& label_b = "B");
 
 // The summary of one mesh (counts, area, box, channels), on `threads` OpenMP threads (0: the
 // default; the same summary for any team). Precondition: face indices in range (validate).

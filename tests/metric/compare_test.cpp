@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <iterator>
 
 #include "metric/errors.h"
 #include "tests/support/shapes.h"
@@ -203,13 +205,18 @@ TEST(Compare, OneThreadEqualsTwoThreads) {
   }
 }
 
-// Both directions of two comparisons of the same meshes give the same numbers, bit for bit.
+// Both directions (those that ran) of two comparisons of the same meshes give the same numbers,
+// bit for bit.
 void expect_same_directions(const ComparisonResult& made, const ComparisonResult& stored) {
-  for (const auto& [x, y] : {std::pair{&*made.forward, &*stored.forward},
-                             std::pair{&*made.backward, &*stored.backward}}) {
+  for (const auto& [dx, dy] :
+       {std::pair{&made.forward, &stored.forward}, std::pair{&made.backward, &stored.backward}}) {
+    ASSERT_EQ(dx->has_value(), dy->has_value());
+    if (!dx->has_value()) continue;
+    const DirectionResult *x = &**dx, *y = &**dy;
     EXPECT_EQ(x->samples, y->samples);
     EXPECT_EQ(x->sampling, y->sampling);
     EXPECT_EQ(x->step, y->step);
+    EXPECT_EQ(x->index, y->index);
     EXPECT_EQ(x->nearest_feature, y->nearest_feature);
     EXPECT_EQ(x->samples_with_ties, y->samples_with_ties);
     for (std::size_t m = 0; m < made.measures.size(); ++m) {
@@ -246,6 +253,113 @@ TEST(Compare, SamplesMadeAsQueriedEqualStoredOnes) {
     ASSERT_FALSE(stored.forward->sample_set.samples.empty());
     expect_same_directions(made, stored);
   }
+}
+
+// A mesh with a per-vertex scalar channel "temperature" (a linear function of the position).
+TriMesh with_temperature(TriMesh m) {
+  AttributeChannel c{"temperature", AttributeKind::kScalar, Storage::kPerVertex, 1, {}};
+  for (const Vec3& p : m.positions) c.values.push_back(p[2] + 0.5 * p[0]);
+  m.channels.push_back(std::move(c));
+  return m;
+}
+
+// One reference A compared with several meshes B, the options changed between some of the
+// comparisons: each gives what a fresh comparison gives, and what A's reference keeps is used
+// again exactly where the options that made it are unchanged.
+TEST(Compare, ReferenceGivesWhatFreshComparisonsGive) {
+  const TriMesh a = with_temperature(test::icosphere(2));  // 320 faces
+  const TriMesh small = with_temperature(test::icosphere(1));
+  const TriMesh moved = with_temperature(test::translated(test::icosahedron(), {0.02, 0, 0.01}));
+  const TriMesh larger = with_temperature(test::icosphere(3));  // more faces than A
+  ComparisonReference reference(a, "A", 2);
+  CompareOptions o;
+  o.threads = 2;
+  struct Step {
+    const TriMesh* b;
+    std::function<void(CompareOptions&)> change;
+    bool samples_reused, index_reused;  // expected
+  };
+  const Step steps[] = {
+      {&small, [](CompareOptions&) {}, false, false},
+      {&moved, [](CompareOptions&) {}, true, true},
+      // 10 x the faces of B now: A's samples made anew, its index kept
+      {&larger, [](CompareOptions&) {}, false, true},
+      {&moved, [](CompareOptions& x) { x.attributes.normals = NormalSource::kArea; }, false, true},
+      {&moved, [](CompareOptions&) {}, true, true},
+      {&small, [](CompareOptions& x) { x.index = IndexKind::kBruteForce; }, true, false},
+      {&small, [](CompareOptions& x) { x.index = IndexKind::kBvh; }, true, false},
+      {&small, [](CompareOptions& x) { x.ties.relative = 1e-2; }, true, false},
+      {&small, [](CompareOptions& x) { x.ties.absolute_fraction = 1e-3; }, true, false},
+      {&moved,
+       [](CompareOptions& x) {
+         x.sampling.faces = FaceSampling::kMonteCarlo;
+         x.sampling.seed = 3;
+       },
+       false, true},
+      {&moved, [](CompareOptions& x) { x.sampling.seed = 4; }, false, true},
+      {&moved, [](CompareOptions& x) { x.sampling.faces = FaceSampling::kScanConversion; }, false,
+       true},
+      {&moved, [](CompareOptions& x) { x.sampling.vertices = false; }, false, true},
+      {&moved, [](CompareOptions& x) { x.sampling.step_fraction = 0.02; }, false, true},
+      {&moved, [](CompareOptions& x) { x.sampling.step = 0.03; }, false, true},
+      {&moved, [](CompareOptions& x) { x.sampling.vertices = true; }, false, true},
+      {&moved, [](CompareOptions& x) { x.direction = Direction::kForward; }, true, true},
+      {&small, [](CompareOptions& x) { x.direction = Direction::kBackward; }, true, true},
+      {&small, [](CompareOptions& x) { x.keep_samples = true; }, false, true},
+  };
+  for (std::size_t i = 0; i < std::size(steps); ++i) {
+    SCOPED_TRACE("step " + std::to_string(i));
+    steps[i].change(o);
+    const ComparisonResult fresh = compare_meshes(a, *steps[i].b, o, "A", "B");
+    const ComparisonResult kept = compare_meshes(reference, *steps[i].b, o, "B");
+    ASSERT_EQ(kept.measures.size(), fresh.measures.size());
+    for (std::size_t m = 0; m < kept.measures.size(); ++m)
+      EXPECT_EQ(kept.measures[m].name, fresh.measures[m].name);
+    EXPECT_EQ(kept.normal_source, fresh.normal_source);
+    EXPECT_EQ(kept.a.label, "A");
+    EXPECT_EQ(kept.a.faces, fresh.a.faces);
+    EXPECT_EQ(kept.a.area, fresh.a.area);
+    EXPECT_EQ(kept.diagonal, fresh.diagonal);
+    expect_same_directions(kept, fresh);
+    for (std::size_t m = 0; m < kept.symmetric.size(); ++m)
+      EXPECT_EQ(kept.symmetric[m].mean, fresh.symmetric[m].mean);
+    if (kept.forward && !o.keep_samples) {
+      EXPECT_EQ(kept.forward->samples_reused, steps[i].samples_reused);
+    }
+    if (kept.backward) {
+      EXPECT_EQ(kept.backward->index_reused, steps[i].index_reused);
+    }
+    for (const auto* d : {&fresh.forward, &fresh.backward}) {
+      if (d->has_value()) {
+        EXPECT_FALSE((*d)->samples_reused || (*d)->index_reused);
+      }
+    }
+  }
+}
+
+// A reference is checked when made, and a mesh B compared with it is checked as compare_meshes
+// checks it: the same errors.
+TEST(Compare, ReferenceRejectsWhatCompareMeshesRejects) {
+  TriMesh broken = test::square();
+  broken.faces[0][1] = 99;  // out of range
+  EXPECT_THROW(ComparisonReference(broken, "broken"), InvalidInput);
+  EXPECT_THROW(ComparisonReference(TriMesh(), "empty"), InvalidInput);
+  const TriMesh a = test::icosphere(1);
+  ComparisonReference reference(a, "A");
+  EXPECT_THROW(compare_meshes(reference, broken, CompareOptions(), "broken"), InvalidInput);
+  TriMesh cloud;
+  cloud.positions = {{0, 0, 0}};
+  CompareOptions o;
+  try {
+    compare_meshes(reference, cloud, o, "cloud");
+    ADD_FAILURE() << "a mesh without faces was searched";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("cloud has no faces"), std::string::npos) << e.what();
+  }
+  // The reference still works after a failed comparison.
+  const ComparisonResult r = compare_meshes(reference, a, o, "A again");
+  EXPECT_EQ(r.forward->stats[0].max, 0.0);
+  EXPECT_EQ(r.backward->stats[0].max, 0.0);
 }
 
 TEST(Compare, PointCloudReferenceWorksForwardOnly) {
