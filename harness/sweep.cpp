@@ -16,6 +16,7 @@
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -357,6 +358,9 @@ SweepSummary run_sweep(const SweepConfig& config, const SweepOptions& options) {
     } catch (const std::exception& e) {
       error = e.what();
     }
+    // The mesh checked, summarised and (by the first comparison) indexed and sampled once for
+    // all the group's ratios: the same results as comparing it anew each time.
+    std::optional<ComparisonReference> reference;
     for (std::size_t i = 0; i < g.jobs.size(); ++i) {
       const Job& job = *g.jobs[i];
       ResultRow head = base_row(job);
@@ -380,7 +384,8 @@ SweepSummary run_sweep(const SweepConfig& config, const SweepOptions& options) {
       }
       ComparisonResult cmp;
       try {
-        cmp = compare_meshes(*mesh, res.mesh, compare, config.meshes[job.mesh],
+        if (!reference) reference.emplace(*mesh, config.meshes[job.mesh], compare.threads);
+        cmp = compare_meshes(*reference, res.mesh, compare,
                              specs[g.simplifier].name + " " + percent_text(job.reduction_percent));
       } catch (const std::exception& e) {
         head.set("status", "metric-failed");

@@ -7,7 +7,9 @@
 //   lock <csv>.lock (flock, exclusive); read <csv>: drop torn lines, incomplete and stale jobs
 //   for each (mesh, simplifier) group with missing jobs, on `jobs` threads:
 //     simplify_sweep(mesh, missing ratios)          (one decimation run where supported)
-//     compare_meshes(mesh, simplified) per ratio    (OpenMP inside)
+//     compare_meshes(mesh, simplified) per ratio    (OpenMP inside; the mesh's checks, summary,
+//                                                    samples and BVH made once per group:
+//                                                    ComparisonReference, metric/compare.h)
 //     append the job's rows with ONE write() on an O_APPEND descriptor, fdatasync
 //   rewrite <csv> in canonical order (atomically) when every job of the shard is present
 //

@@ -14,7 +14,9 @@
 
 #include "harness/results_csv.h"
 #include "harness/shard.h"
+#include "metric/compare.h"
 #include "metric/errors.h"
+#include "metric/io/mesh_io.h"
 #include "metric/io/write_ply.h"
 #include "simplifiers/registry.h"
 #include "tests/support/shapes.h"
@@ -193,6 +195,43 @@ TEST_F(SweepTest, JobsInParallelGiveTheSameRows) {
   run("one", {}, 1);
   run("two", {}, 2);
   expect_same(rows("one"), rows("two"));
+}
+
+// Each row holds what a fresh comparison of the mesh with that simplification gives, bit for bit
+// (the sweep compares a group's simplifications with one ComparisonReference of the mesh).
+TEST_F(SweepTest, RowsEqualAFreshComparisonOfEachSimplification) {
+  config_.meshes = {"sphere.ply"};
+  config_.simplifiers = {{"openmesh-quadric", {}}};
+  config_.reduction_percent = {50, 75, 90};
+  run("out");
+  const std::vector<ResultRow> r = rows("out");
+  const TriMesh sphere = read_mesh(dir_ + "/sphere.ply");
+  std::vector<SimplifyRequest> requests;
+  for (double ratio : config_.reduction_percent)
+    requests.push_back(SimplifyRequest::reduction(ratio / 100));
+  const std::vector<SimplifyResult> simplified =
+      create_simplifier("openmesh-quadric")->simplify_sweep(sphere, requests);
+  ASSERT_EQ(simplified.size(), requests.size());
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < requests.size(); ++i) {
+    const ComparisonResult fresh =
+        compare_meshes(sphere, simplified[i].mesh, compare_options(config_));
+    for (std::size_t m = 0; m < fresh.measures.size(); ++m)
+      for (const ResultRow& row : r) {
+        if (row.number("reduction_percent") != config_.reduction_percent[i] ||
+            row.get("measure") != fresh.measures[m].name)
+          continue;
+        EXPECT_EQ(row.number("forward_mean"), fresh.forward->stats[m].mean);
+        EXPECT_EQ(row.number("forward_p95"), fresh.forward->stats[m].p95);
+        EXPECT_EQ(row.number("backward_rms"), fresh.backward->stats[m].rms);
+        EXPECT_EQ(row.number("backward_max"), fresh.backward->stats[m].max);
+        EXPECT_EQ(row.number("symmetric_mean"), fresh.symmetric[m].mean);
+        EXPECT_EQ(row.number("hausdorff"), fresh.symmetric[m].hausdorff);
+        ++checked;
+      }
+  }
+  EXPECT_EQ(checked, r.size());
+  EXPECT_GE(checked, 3u * 2);  // geometry and normals at least, for each ratio
 }
 
 TEST_F(SweepTest, ASecondSweepOnTheSameCsvIsRefused) {
