@@ -106,8 +106,8 @@ ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const Compar
 // same sampling options, which the default count 10 x max(faces of A, faces of B) keeps while B
 // has no more faces than A; and the nearest-point index over A (the backward direction's
 // target) for the same index kind and tie options. Holds them until destroyed (the BVH about 61
-// bytes per face of A). `a` must outlive it. Not thread-safe: one comparison at a time (each
-// uses the OpenMP team inside).
+// bytes per face of A). `a` must outlive it, unchanged. Not thread-safe: one comparison at a time
+// (each uses the OpenMP team inside).
 class ComparisonReference {
  public:
   // Validates A (InvalidInput as compare_meshes throws it, naming `label`) and summarises it on

@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "metric/color_space.h"
 #include "metric/errors.h"
+#include "metric/io/write_png.h"
 #include "metric/nearest_point.h"
 #include "tests/support/shapes.h"
+#include "tests/support/test_data.h"
 
 namespace meshdev {
 namespace {
@@ -122,6 +125,53 @@ TEST(Attributes, RequestedAttributeMissingOnOneMeshIsAnError) {
   o.normals = NormalSource::kFile;
   o.attributes = {"normal"};
   EXPECT_THROW(plan_attributes(a, b, o, "a", "b"), InvalidInput);
+}
+
+// A plan with a cache of A's values computes A's normals once per weighting and reads A's texture
+// image once: later plans take them from the cache (A's image is not read again: the file can
+// be gone), the same values as a plan without it.
+TEST(Attributes, ReferenceCacheKeepsNormalsPerWeightingAndTheTexture) {
+  const std::string dir = test::scratch_dir("ReferenceCacheKeepsNormals");
+  TriMesh a = test::icosphere(1), b = test::translated(test::icosphere(1), {0.1, 0, 0});
+  for (TriMesh* m : {&a, &b}) {
+    AttributeChannel& uv =
+        m->add_channel("texcoord", AttributeKind::kTexCoord, Storage::kPerVertex, 2);
+    for (std::size_t i = 0; i < uv.values.size(); ++i)
+      uv.values[i] = 0.01 * static_cast<double>(i % 97);
+  }
+  a.texture_file = dir + "/a.png";
+  b.texture_file = dir + "/b.png";
+  write_png(a.texture_file, Image(4, 2, {0.2, 0.4, 0.6}));
+  write_png(b.texture_file, Image(2, 2, {0.9, 0.1, 0.1}));
+
+  ReferenceAttributes cache;
+  AttributeOptions o;
+  o.attributes = {"normal", "texture"};
+  const AttributePlan first = plan_attributes(a, b, o, "A", "B", &cache);
+  ASSERT_EQ(cache.normals.size(), 1u);
+  ASSERT_TRUE(cache.texture);
+  EXPECT_EQ(cache.texture, first.a.texture);
+  EXPECT_EQ(first.a.texture->width, 4);
+  const AttributePlan plain = plan_attributes(a, b, o, "A", "B");
+  ASSERT_EQ(first.a.computed.size(), 1u);
+  EXPECT_EQ(first.a.computed[0].values, plain.a.computed[0].values);
+
+  std::filesystem::remove(a.texture_file);
+  EXPECT_THROW(plan_attributes(a, b, o, "A", "B"), IoError);
+  const AttributePlan again = plan_attributes(a, b, o, "A", "B", &cache);
+  EXPECT_EQ(again.a.texture, first.a.texture);
+  EXPECT_NE(again.b.texture, plain.b.texture);  // B's image is read each time
+  EXPECT_EQ(again.a.computed[0].values, plain.a.computed[0].values);
+  EXPECT_EQ(cache.normals.size(), 1u);
+
+  o.normals = NormalSource::kArea;
+  const AttributePlan area = plan_attributes(a, b, o, "A", "B", &cache);
+  EXPECT_EQ(cache.normals.size(), 2u);
+  a.texture_file = b.texture_file;  // only the cache can give A's old image now
+  const AttributePlan area_plain = plan_attributes(a, b, o, "A", "B");
+  EXPECT_EQ(area.a.computed[0].values, area_plain.a.computed[0].values);
+  EXPECT_NE(area.a.computed[0].values, first.a.computed[0].values);
+  EXPECT_EQ(area.a.texture->width, 4);
 }
 
 }  // namespace
