@@ -17,19 +17,12 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
-// Where a direction keeps what it makes from one mesh for later comparisons (ComparisonReference):
-// the samples of the sampled mesh, the index over the searched mesh. A null pointer: nothing is
-// kept; an empty store is filled; a filled one is used (made for the same mesh and options).
-struct DirectionStores {
-  std::optional<SampleSequence>* samples = nullptr;
-  std::unique_ptr<NearestPointIndex>* index = nullptr;
-};
-
 DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
                               const std::vector<Measure>& measures, const CompareOptions& o,
                               const SamplingOptions& sampling, double diagonal,
                               const std::string& from_label, const std::string& to_label,
-                              const DirectionStores& stores) {
+                              std::optional<SampleSequence>* samples_store,
+                              std::unique_ptr<NearestPointIndex>* index_store) {
   DirectionResult r;
   r.from = from_label;
   r.to = to_label;
@@ -48,7 +41,7 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   SampleSet samples;
   double equal_weight = 0.0;
   if (!o.keep_samples && sequence_sampling(sampling)) {
-    std::optional<SampleSequence>& store = stores.samples ? *stores.samples : local_sequence;
+    std::optional<SampleSequence>& store = samples_store ? *samples_store : local_sequence;
     r.samples_reused = store.has_value();
     if (!store) store.emplace(*from.mesh, sampling, diagonal);
     generated = &*store;
@@ -70,7 +63,7 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
 
   t0 = Clock::now();
   std::unique_ptr<NearestPointIndex> local_index;
-  std::unique_ptr<NearestPointIndex>& index = stores.index ? *stores.index : local_index;
+  std::unique_ptr<NearestPointIndex>& index = index_store ? *index_store : local_index;
   r.index_reused = index != nullptr;
   if (!index) index = make_nearest_point_index(*to.mesh, o.index, o.ties, o.threads);
   r.seconds_index = seconds_since(t0);
@@ -158,7 +151,18 @@ MeshSummary summarize(const TriMesh& mesh, const std::string& label, int threads
 
 namespace {
 
-// What a comparison keeps of mesh A for the next one (ComparisonReference); null: nothing.
+// The sampling options of both directions: the default count is 10 x the larger face count.
+SamplingOptions resolved_sampling(const CompareOptions& options, const TriMesh& a,
+                                  const TriMesh& b) {
+  SamplingOptions sampling = options.sampling;
+  sampling.threads = options.threads;
+  if (sampling.target_count == 0)
+    sampling.target_count = 10 * std::max(a.num_faces(), b.num_faces());
+  return sampling;
+}
+
+// What a comparison keeps of mesh A for the next one (ComparisonReference); null: nothing is
+// kept. An empty store is filled; a filled one is used (made for the same mesh and options).
 struct ReferenceStores {
   ReferenceAttributes* attributes = nullptr;
   std::optional<SampleSequence>* samples = nullptr;     // A's samples (forward direction)
@@ -183,16 +187,13 @@ ComparisonResult compare_prepared(const TriMesh& a, const MeshSummary& summary_a
   r.measures = plan.measures;
   r.normal_source = plan.normal_source;
 
-  SamplingOptions sampling = options.sampling;
-  sampling.threads = options.threads;
-  if (sampling.target_count == 0)
-    sampling.target_count = 10 * std::max(a.num_faces(), b.num_faces());
+  const SamplingOptions sampling = resolved_sampling(options, a, b);
   if (options.direction != Direction::kBackward)
     r.forward = run_direction(plan.a, plan.b, r.measures, options, sampling, r.diagonal, label_a,
-                              label_b, {stores.samples, nullptr});
+                              label_b, stores.samples, nullptr);
   if (options.direction != Direction::kForward)
     r.backward = run_direction(plan.b, plan.a, r.measures, options, sampling, r.diagonal, label_b,
-                               label_a, {nullptr, stores.index});
+                               label_a, nullptr, stores.index);
   if (r.forward && r.backward) {
     for (std::size_t m = 0; m < r.measures.size(); ++m) {
       const Statistics& f = r.forward->stats[m];
@@ -222,6 +223,12 @@ bool same_samples(const SamplingOptions& x, const SamplingOptions& y) {
          x.step_fraction == y.step_fraction && x.target_count == y.target_count && x.seed == y.seed;
 }
 
+// Whether two comparisons' options build the same index over one mesh. O(1).
+bool same_index(IndexKind kind, const TieOptions& ties, const CompareOptions& o) {
+  return kind == o.index && ties.relative == o.ties.relative &&
+         ties.absolute_fraction == o.ties.absolute_fraction;
+}
+
 }  // namespace
 
 struct ComparisonReference::Cache {
@@ -248,16 +255,11 @@ ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
   validate(b, label_b, options.threads);
   if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
   ComparisonReference::Cache& cache = *a.cache_;
-  // A's samples as compare_prepared will ask for them: kept only for the same options.
-  SamplingOptions sampling = options.sampling;
-  if (sampling.target_count == 0)
-    sampling.target_count = 10 * std::max(a.mesh().num_faces(), b.num_faces());
+  // What was kept is used only for the options that made it.
+  const SamplingOptions sampling = resolved_sampling(options, a.mesh(), b);
   if (cache.samples && !same_samples(cache.sampling, sampling)) cache.samples.reset();
   if (!cache.samples) cache.sampling = sampling;
-  if (cache.index &&
-      (cache.index_kind != options.index || cache.ties.relative != options.ties.relative ||
-       cache.ties.absolute_fraction != options.ties.absolute_fraction))
-    cache.index.reset();
+  if (cache.index && !same_index(cache.index_kind, cache.ties, options)) cache.index.reset();
   if (!cache.index) {
     cache.index_kind = options.index;
     cache.ties = options.ties;

@@ -100,7 +100,8 @@ class QuantileBins {
  public:
   // sum_weights' stripes of samples: a constant, so that the sums do not depend on the team.
   static constexpr int kStripes = 4;
-  // sum_weights' spare sums, past the bins, for the weights of values at the minimum.
+  // sum_weights' spare sums, past the bins, where the weights of values at the minimum go so
+  // that no branch skips them; they are not read (pass 2 sums those weights per block).
   static constexpr std::size_t kSpares = 4;
 
   QuantileBins(std::size_t n, double lo, double hi, bool weighted)

@@ -257,9 +257,10 @@ TEST(Compare, SamplesMadeAsQueriedEqualStoredOnes) {
 
 // A mesh with a per-vertex scalar channel "temperature" (a linear function of the position).
 TriMesh with_temperature(TriMesh m) {
-  AttributeChannel c{"temperature", AttributeKind::kScalar, Storage::kPerVertex, 1, {}};
-  for (const Vec3& p : m.positions) c.values.push_back(p[2] + 0.5 * p[0]);
-  m.channels.push_back(std::move(c));
+  AttributeChannel& c =
+      m.add_channel("temperature", AttributeKind::kScalar, Storage::kPerVertex, 1);
+  for (std::size_t v = 0; v < m.positions.size(); ++v)
+    c.values[v] = m.positions[v][2] + 0.5 * m.positions[v][0];
   return m;
 }
 
