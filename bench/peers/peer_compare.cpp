@@ -15,12 +15,14 @@
 //
 // usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2] [--repeats 3]
 //                           [--engines meshdev,embree,cgal] [--embree-hint] [--embree-float]
-//                           [--rounds R] [--csv FILE] [--label NAME]
+//                           [--rounds R [--rounds-csv FILE]] [--csv FILE] [--label NAME]
 //                           [--ab R [--ab-chunk C] [--ab-build]]
 // --rounds R: after the table, meshdev and Embree (and Embree+hint with --embree-hint) are timed
 // once each, one after the other, R times over on each thread count, and the ratio of each round
 // is printed with the median and range: on a shared host whose speed drifts over minutes, the
 // best-of-N of engines timed minutes apart can differ by a drift that hits only one of them.
+// --rounds-csv FILE: each round's throughputs and ratios are also appended to FILE as CSV, one
+// row per (thread count, round), for bench/peers/table_md.py's table of the rounds' medians.
 // --ab R: instead of the above, meshdev alone, variant 0 against variant 1 of an experiment
 // (metric/ab_variant.h): the samples are cut into chunks of C (65536), each chunk is answered by
 // both variants in turn, which goes first alternating from chunk to chunk and round to round, and
@@ -452,6 +454,7 @@ struct Options {
   std::size_t ab_chunk = 65536;  // samples per chunk of --ab
   bool ab_build = false;         // --ab-build: each variant queries an index built under it
   std::string csv;
+  std::string rounds_csv;  // --rounds-csv: one CSV row per round
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -467,8 +470,9 @@ std::vector<std::string> split(const std::string& s) {
   std::fprintf(stderr,
                "usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2]\n"
                "                          [--repeats 3] [--engines meshdev,embree,cgal]\n"
-               "                          [--embree-hint] [--embree-float] [--rounds R]\n"
-               "                          [--csv FILE] [--label NAME]\n"
+               "                          [--embree-hint] [--embree-float]\n"
+               "                          [--rounds R [--rounds-csv FILE]] [--csv FILE]\n"
+               "                          [--label NAME]\n"
                "                          [--ab R [--ab-chunk C] [--ab-build]]\n");
   std::exit(2);
 }
@@ -509,6 +513,8 @@ Options parse(int argc, char** argv) {
       o.ab_chunk = std::max<std::size_t>(1, std::stoull(next()));
     else if (s == "--csv")
       o.csv = next();
+    else if (s == "--rounds-csv")
+      o.rounds_csv = next();
     else if (s == "--label")
       o.label = next();
     else if (!s.empty() && s[0] == '-')
@@ -517,6 +523,7 @@ Options parse(int argc, char** argv) {
       pos.push_back(s);
   }
   if (pos.size() != 3) usage();
+  if (!o.rounds_csv.empty() && o.rounds == 0) usage();
   o.a = pos[0], o.b = pos[1], o.samples = std::stoull(pos[2]);
   return o;
 }
@@ -541,6 +548,20 @@ double median_of(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t m = v.size() / 2;
   return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+// Appends `rows` to the CSV file at `path`, with `header` first if the file is new or empty.
+// False (with a message on stderr) if the file cannot be written.
+bool append_csv(const std::string& path, const char* header, const std::string& rows) {
+  std::ifstream probe(path);
+  const bool fresh = !probe.good() || probe.peek() == std::ifstream::traits_type::eof();
+  probe.close();
+  std::ofstream f(path, std::ios::app);
+  if (fresh) f << header;
+  f << rows;
+  f.close();
+  if (!f) std::fprintf(stderr, "peer_compare: cannot write %s\n", path.c_str());
+  return static_cast<bool>(f);
 }
 
 // The last line of an A/B: the median and range of the rounds' ratios (variant 0 / variant 1).
@@ -971,6 +992,9 @@ int main(int argc, char** argv) {
   // round, so that a drift of the machine's speed over the minutes of a run (a shared host:
   // 20-30 % seen within a session) falls on both alike. Each round's ratio is printed, then
   // their median and range per thread count.
+  const std::string label =
+      opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
+  std::ostringstream rounds_csv;  // --rounds-csv rows
   if (opt.rounds > 0 && wants(opt, "meshdev") && wants(opt, "embree")) {
     auto index = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
     const EmbreeArrays arrays = embree_arrays(b);
@@ -995,6 +1019,14 @@ int main(int argc, char** argv) {
         if (opt.embree_hint) over_hint.push_back(h.wall / m.wall);
         std::printf("%3d %5d %10.3f %10.3f %10.3f %12.2f %12.2f\n", th, r + 1, qps(m), qps(e),
                     qps(h), e.wall / m.wall, h.wall / m.wall);
+        char line[512];
+        std::snprintf(line, sizeof line,
+                      "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s\n", label.c_str(),
+                      basename(opt.a).c_str(), basename(opt.b).c_str(), a.num_faces(),
+                      b.num_faces(), n, opt.morton ? "morton" : "native", th, r + 1, qps(m) * 1e6,
+                      qps(e) * 1e6, qps(h) * 1e6, e.wall / m.wall, h.wall / m.wall,
+                      load_start.substr(0, load_start.find(' ')).c_str());
+        rounds_csv << line;
       }
       const auto [lo, hi] = std::minmax_element(over.begin(), over.end());
       std::printf("%3d median meshdev/embree %.2f (range %.2f-%.2f)", th, median_of(over), *lo,
@@ -1010,8 +1042,6 @@ int main(int argc, char** argv) {
 
   // CSV.
   std::ostringstream csv;
-  const std::string label =
-      opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
   for (const Row& r : rows) {
     char line[1024];
     std::snprintf(line, sizeof line,
@@ -1032,13 +1062,12 @@ int main(int argc, char** argv) {
       "peak_rss_mib,meshdev_over_engine,meshdev_over_engine_per_cpu,mean_spread,load_start,"
       "load_end\n";
   std::printf("\nCSV\n%s%s", header, csv.str().c_str());
-  if (!opt.csv.empty()) {
-    std::ifstream probe(opt.csv);
-    const bool fresh = !probe.good() || probe.peek() == std::ifstream::traits_type::eof();
-    probe.close();
-    std::ofstream f(opt.csv, std::ios::app);
-    if (fresh) f << header;
-    f << csv.str();
-  }
-  return 0;
+  bool written = opt.csv.empty() || append_csv(opt.csv, header, csv.str());
+  // Embree+hint's columns are nan without --embree-hint.
+  const char* rounds_header =
+      "label,a,b,a_faces,b_faces,samples,order,threads,round,meshdev_qps,embree_qps,"
+      "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start\n";
+  if (!opt.rounds_csv.empty())
+    written = append_csv(opt.rounds_csv, rounds_header, rounds_csv.str()) && written;
+  return written ? 0 : 1;
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds and runs the whole peer comparison, writing
 #   results/performance/peers.csv     one row per (series, pair, engine, threads) from peer_compare
+#   results/performance/rounds.csv    the pairs' interleaved rounds, one row per (pair, threads, round)
 #   results/performance/meshlab.csv   whole-process meshdev compare vs meshlabserver
 #   results/performance/peers.png     throughput vs faces of B and vs samples (matplotlib)
 #   results/performance/peers_per_cpu.png  the same per CPU-second (fair on a loaded machine)
@@ -42,13 +43,14 @@ for g in "100 50" "224 112" "316 158" "500 250"; do
 done
 
 csv="$out/peers.csv"
-rm -f "$csv"
+rounds_csv="$out/rounds.csv"
+rm -f "$csv" "$rounds_csv"
 pc="$build/bench/peers/peer_compare"
 say "== peer_compare: N=$n, best of $reps, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 while read -r label a b; do
   say "-- pairs|$label"
   "$pc" "$a" "$b" "$n" --repeats "$reps" --embree-hint --rounds "$rounds" --label "pairs|$label" \
-    --csv "$csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
+    --csv "$csv" --rounds-csv "$rounds_csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
 done < "$in/pairs.txt"
 for f in 10000 50176 99856 250000; do
   say "-- faces|torus100k->$f"
@@ -78,4 +80,6 @@ fi
 say "== plot"
 /usr/bin/python3 "$repo/bench/peers/plot_peers.py" "$csv" "$out/peers.png" wall 2>&1 | tee -a "$log"
 /usr/bin/python3 "$repo/bench/peers/plot_peers.py" "$csv" "$out/peers_per_cpu.png" cpu 2>&1 | tee -a "$log"
-say "done: $csv $out/peers.png $log (load average now $(cut -d' ' -f1-3 /proc/loadavg))"
+say "== the pairs' rounds (medians)"
+/usr/bin/python3 "$repo/bench/peers/table_md.py" --rounds "$rounds_csv,$csv" 2>&1 | tee -a "$log"
+say "done: $csv $rounds_csv $out/peers.png $log (load average now $(cut -d' ' -f1-3 /proc/loadavg))"

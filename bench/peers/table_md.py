@@ -1,7 +1,12 @@
 #!/usr/bin/python3
 """Markdown tables for docs/performance.md from results/performance/peers.csv (and meshlab.csv).
-usage: table_md.py peers.csv [meshlab.csv]"""
+usage: table_md.py peers.csv [meshlab.csv]
+       table_md.py --rounds ROUNDS.csv[,PEERS.csv] [ROUNDS2.csv[,PEERS2.csv] ...]
+The second form: the interleaved rounds (peer_compare --rounds-csv) as medians per pair, one
+value per run in each cell (separated by " · "); with the run's PEERS.csv (its --csv) the
+2-thread speed-up of the best-of rows too."""
 import csv
+import statistics
 import sys
 from collections import OrderedDict
 
@@ -64,7 +69,62 @@ def meshlab(path):
               f"| {r['load_start']}–{r['load_end']} |")
 
 
+def pair_name(label):
+    return (label.split("|", 1)[1] if "|" in label else label).replace("->", "→")
+
+
+def rounds(runs):
+    """runs: [(rounds rows, peers rows or None)], one per run."""
+    def med(values):
+        return statistics.median(values)
+
+    def span(values):
+        return f"{med(values):.2f} ({min(values):.2f}–{max(values):.2f})"
+
+    pairs = []
+    for rows, _ in runs:
+        for r in rows:
+            if r["label"] not in pairs:
+                pairs.append(r["label"])
+    print("| pair | meshdev M/s, 1 / 2 threads | ÷ Embree, 1 thread | ÷ Embree, 2 threads "
+          "| ÷ Embree+hint, 2 threads | 2-thread speed-up (best-of; rounds) |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for label in pairs:
+        cells = [[], [], [], [], []]
+        for rows, best in runs:
+            by = {t: [r for r in rows if r["label"] == label and r["threads"] == t]
+                  for t in ("1", "2")}
+            if not by["1"] or not by["2"]:
+                for c in cells:
+                    c.append("–")
+                continue
+            q = {t: med([float(r["meshdev_qps"]) / 1e6 for r in by[t]]) for t in by}
+            over = {t: [float(r["meshdev_over_embree"]) for r in by[t]] for t in by}
+            hint = [float(r["meshdev_over_embree_hint"]) for r in by["2"]]
+            cells[0].append(f"{q['1']:.2f} / {q['2']:.2f}")
+            cells[1].append(span(over["1"]))
+            cells[2].append(span(over["2"]))
+            cells[3].append("–" if any(h != h for h in hint) else f"{med(hint):.2f}")
+            speedup = f"{q['2'] / q['1']:.2f}"
+            if best is not None:
+                m = {r["threads"]: float(r["qps"]) for r in best
+                     if r["label"] == label and r["engine"] == "meshdev"}
+                if "1" in m and "2" in m:
+                    speedup = f"{m['2'] / m['1']:.2f}; " + speedup
+            cells[4].append(speedup)
+        print(f"| {pair_name(label)} | " + " | ".join(" · ".join(c) for c in cells) + " |")
+    print("\nMedians over each run's rounds (range); runs separated by \" · \".\n")
+
+
 if __name__ == "__main__":
+    if len(sys.argv) >= 3 and sys.argv[1] == "--rounds":
+        runs = []
+        for arg in sys.argv[2:]:
+            paths = arg.split(",")
+            runs.append((list(csv.DictReader(open(paths[0]))),
+                         list(csv.DictReader(open(paths[1]))) if len(paths) > 1 else None))
+        rounds(runs)
+        sys.exit(0)
     if len(sys.argv) not in (2, 3):
         sys.exit(__doc__)
     peers(sys.argv[1])
