@@ -216,6 +216,13 @@ ComparisonResult compare_prepared(const TriMesh& a, const MeshSummary& summary_a
   return r;
 }
 
+// A mesh a comparison can take: validate()'s checks, and at least one vertex (InvalidInput
+// naming `label` otherwise). O(V + F).
+void require_comparable(const TriMesh& m, const std::string& label, int threads) {
+  validate(m, label, threads);
+  if (m.positions.empty()) throw InvalidInput(label + " has no vertices");
+}
+
 // Whether two sampling options give the same samples of one mesh (the thread count does not
 // change them). O(1).
 bool same_samples(const SamplingOptions& x, const SamplingOptions& y) {
@@ -242,8 +249,7 @@ struct ComparisonReference::Cache {
 
 ComparisonReference::ComparisonReference(const TriMesh& a, std::string label, int threads)
     : mesh_(&a), label_(std::move(label)), cache_(std::make_unique<Cache>()) {
-  validate(a, label_, threads);
-  if (a.positions.empty()) throw InvalidInput(label_ + " has no vertices");
+  require_comparable(a, label_, threads);
   summary_ = summarize(a, label_, threads);
 }
 
@@ -252,8 +258,7 @@ ComparisonReference::~ComparisonReference() = default;
 ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
                                 const CompareOptions& options, const std::string& label_b) {
   const auto start = Clock::now();
-  validate(b, label_b, options.threads);
-  if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
+  require_comparable(b, label_b, options.threads);
   ComparisonReference::Cache& cache = *a.cache_;
   // What was kept is used only for the options that made it.
   const SamplingOptions sampling = resolved_sampling(options, a.mesh(), b);
@@ -271,10 +276,9 @@ ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
 ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
                                 const std::string& label_a, const std::string& label_b) {
   const auto start = Clock::now();
-  validate(a, label_a, options.threads);
-  validate(b, label_b, options.threads);
-  if (a.positions.empty()) throw InvalidInput(label_a + " has no vertices");
-  if (b.positions.empty()) throw InvalidInput(label_b + " has no vertices");
+  // A, then B: the order ComparisonReference checks them in.
+  require_comparable(a, label_a, options.threads);
+  require_comparable(b, label_b, options.threads);
   return compare_prepared(a, summarize(a, label_a, options.threads), b, options, label_b, {},
                           start);
 }
