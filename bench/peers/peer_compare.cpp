@@ -988,12 +988,14 @@ int main(int argc, char** argv) {
   std::printf("peak RSS of the process %.1f MiB; load average at end: %s\n", peak,
               load_end.c_str());
 
+  // The CSV rows' label.
+  const std::string label =
+      opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
+
   // (d) Interleaved rounds: one run of meshdev, then of Embree (and Embree+hint), round after
   // round, so that a drift of the machine's speed over the minutes of a run (a shared host:
   // 20-30 % seen within a session) falls on both alike. Each round's ratio is printed, then
   // their median and range per thread count.
-  const std::string label =
-      opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
   std::ostringstream rounds_csv;  // --rounds-csv rows
   if (opt.rounds > 0 && wants(opt, "meshdev") && wants(opt, "embree")) {
     auto index = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
