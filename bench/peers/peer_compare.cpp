@@ -16,7 +16,14 @@
 // usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2] [--repeats 3]
 //                           [--engines meshdev,embree,cgal] [--embree-hint] [--embree-float]
 //                           [--rounds R [--rounds-csv FILE]] [--csv FILE] [--label NAME]
-//                           [--ab R [--ab-chunk C] [--ab-build]]
+//                           [--ab R [--ab-chunk C] [--ab-build]] [--check REL]
+// --check REL: the agreement as a gate: the process exits 1 (after its CSV rows are written) if
+// the per-sample distances of any two engines differ by more than REL times B's bounding-box
+// diagonal, or an engine gave a distance that is not finite. The peers hand their distances over
+// in float, so REL below about 1e-7 fails on rounding alone (a float of d is within 6e-8 d, and a
+// distance of a sample on B is the square root of a rounding-size square, about 1e-8 of the
+// diagonal); run_all.sh uses 1e-6. A different nearest face differs by far more, except between
+// faces at almost equal distances, which give almost equal distances anyway. Needs two engines.
 // --rounds R: after the table, meshdev and Embree (and Embree+hint with --embree-hint) are timed
 // once each, one after the other, R times over on each thread count, and the ratio of each round
 // is printed with the median and range: on a shared host whose speed drifts over minutes, the
@@ -455,6 +462,7 @@ struct Options {
   bool ab_build = false;         // --ab-build: each variant queries an index built under it
   std::string csv;
   std::string rounds_csv;  // --rounds-csv: one CSV row per round
+  double check = -1.0;     // --check: the largest per-sample disagreement allowed (< 0: none)
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -473,7 +481,7 @@ std::vector<std::string> split(const std::string& s) {
                "                          [--embree-hint] [--embree-float]\n"
                "                          [--rounds R [--rounds-csv FILE]] [--csv FILE]\n"
                "                          [--label NAME]\n"
-               "                          [--ab R [--ab-chunk C] [--ab-build]]\n");
+               "                          [--ab R [--ab-chunk C] [--ab-build]] [--check REL]\n");
   std::exit(2);
 }
 
@@ -517,13 +525,19 @@ Options parse(int argc, char** argv) {
       o.rounds_csv = next();
     else if (s == "--label")
       o.label = next();
-    else if (!s.empty() && s[0] == '-')
+    else if (s == "--check") {
+      const std::string v = next();
+      char* end = nullptr;
+      o.check = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(o.check >= 0.0)) usage();
+    } else if (!s.empty() && s[0] == '-')
       usage();
     else
       pos.push_back(s);
   }
   if (pos.size() != 3) usage();
   if (!o.rounds_csv.empty() && o.rounds == 0) usage();
+  if (o.check >= 0.0 && (o.engines.size() < 2 || o.ab > 0)) usage();
   o.a = pos[0], o.b = pos[1], o.samples = std::stoull(pos[2]);
   return o;
 }
@@ -964,6 +978,37 @@ int main(int argc, char** argv) {
       mean_diff, diag_b > 0 ? mean_diff / diag_b : 0.0, max_abs(d_meshdev, d_embree),
       max_abs(d_meshdev, d_cgal), max_abs(d_embree, d_cgal));
   if (!d_meshdev.empty()) std::printf("meshdev: %.3f equidistant faces per sample\n", meshdev_ties);
+  // --check: every pair of engines that ran, each sample's distances within check x B's
+  // diagonal; a distance that is not finite, or an engine without one per sample, fails.
+  bool agreed = true;
+  if (opt.check >= 0.0) {
+    const double allowed = opt.check * diag_b;
+    double worst = 0.0;
+    std::size_t engines = 0, bad = 0;
+    auto compare = [&](const auto& x, const auto& y) {
+      if (x.empty() || y.empty()) return;
+      if (x.size() != n || y.size() != n) {
+        bad += n;
+        return;
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        const double dx = static_cast<double>(x[i]), dy = static_cast<double>(y[i]);
+        const double diff = std::abs(dx - dy);
+        if (!std::isfinite(dx) || !std::isfinite(dy) || !(diff <= allowed)) ++bad;
+        if (std::isfinite(diff)) worst = std::max(worst, diff);
+      }
+    };
+    for (bool ran : {!d_meshdev.empty(), !d_embree.empty(), !d_cgal.empty()}) engines += ran;
+    compare(d_meshdev, d_embree);
+    compare(d_meshdev, d_cgal);
+    compare(d_embree, d_cgal);
+    agreed = engines >= 2 && bad == 0;
+    std::printf(
+        "check (--check %g): %zu engines, largest per-sample |d| difference %.3g = %.3g of B's "
+        "diagonal, %zu sample comparisons over the limit or not finite: %s\n",
+        opt.check, engines, worst, diag_b > 0 ? worst / diag_b : 0.0, bad,
+        agreed ? "passed" : "FAILED");
+  }
   // The first build ran on OpenMP's default team; set against the first query on that many.
   if (!build_vs_query.empty()) {
     const int team = omp_get_max_threads();
@@ -1071,5 +1116,8 @@ int main(int argc, char** argv) {
       "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start\n";
   if (!opt.rounds_csv.empty())
     written = append_csv(opt.rounds_csv, rounds_header, rounds_csv.str()) && written;
-  return written ? 0 : 1;
+  if (!agreed)
+    std::fprintf(stderr, "peer_compare: the engines disagree on %s -> %s (--check %g)\n",
+                 opt.a.c_str(), opt.b.c_str(), opt.check);
+  return written && agreed ? 0 : 1;
 }

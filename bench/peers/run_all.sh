@@ -10,7 +10,12 @@
 # from 10k to 1M faces), "samples" (torus100k -> 10k with 100k..3M samples).
 #
 # usage: bench/peers/run_all.sh            (env: BUILD=build-peers N=1000000 REPEATS=3 ROUNDS=5
-#                                            QUICK=1 for a 200k-sample smoke run, SKIP_MESHLAB=1)
+#                                            QUICK=1 for a smoke run: N=200000 unless given,
+#                                            one repeat, one round; SKIP_MESHLAB=1;
+#                                            OUT=results/performance; CHECK=1e-6)
+# CHECK: every peer_compare run is also a cross-check (peer_compare --check): the script stops
+# with an error if meshdev, Embree and CGAL give per-sample distances more than CHECK times B's
+# diagonal apart. OUT: where the files above go (bench/smoke.sh, run by CI, writes elsewhere).
 # ROUNDS: the pairs are also timed in interleaved rounds (peer_compare --rounds: meshdev, Embree
 # and Embree+hint one run each per round), whose median ratios hold on a host whose speed drifts.
 # Needs: apt-get install -y libembree-dev libcgal-dev libtbb-dev libbenchmark-dev meshlab xvfb xauth
@@ -18,9 +23,9 @@
 set -euo pipefail
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 build="${BUILD:-$repo/build-peers}"
-n="${N:-1000000}" reps="${REPEATS:-3}" rounds="${ROUNDS:-5}"
-[[ "${QUICK:-0}" == 1 ]] && n=200000 reps=1 rounds=1
-out="$repo/results/performance"
+n="${N:-1000000}" reps="${REPEATS:-3}" rounds="${ROUNDS:-5}" check="${CHECK:-1e-6}"
+[[ "${QUICK:-0}" == 1 ]] && n="${N:-200000}" reps=1 rounds=1
+out="${OUT:-$repo/results/performance}"
 mkdir -p "$out" "$build"
 log="$out/peers.log"
 : > "$log"
@@ -50,12 +55,12 @@ say "== peer_compare: N=$n, best of $reps, load average $(cut -d' ' -f1-3 /proc/
 while read -r label a b; do
   say "-- pairs|$label"
   "$pc" "$a" "$b" "$n" --repeats "$reps" --embree-hint --rounds "$rounds" --label "pairs|$label" \
-    --csv "$csv" --rounds-csv "$rounds_csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
+    --check "$check" --csv "$csv" --rounds-csv "$rounds_csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
 done < "$in/pairs.txt"
 for f in 10000 50176 99856 250000; do
   say "-- faces|torus100k->$f"
   "$pc" "$in/torus100k.ply" "$in/torusB_$f.ply" "$n" --repeats "$reps" --embree-hint \
-    --label "faces|torus100k->$f" --csv "$csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
+    --label "faces|torus100k->$f" --check "$check" --csv "$csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
 done
 say "-- faces|torus100k->1000000 (= pairs|torus100k->1m)"
 grep '^pairs|torus100k->1m,' "$csv" | sed 's/^pairs|torus100k->1m,/faces|torus100k->1000000,/' >> "$csv"
@@ -63,7 +68,7 @@ for s in 100000 300000 1000000 3000000; do
   [[ "${QUICK:-0}" == 1 && $s -gt 300000 ]] && continue
   say "-- samples|torus100k->10k N=$s"
   "$pc" "$in/torus100k.ply" "$in/torus100k_s10k.ply" "$s" --repeats "$reps" \
-    --label "samples|torus100k->10k" --csv "$csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
+    --label "samples|torus100k->10k" --check "$check" --csv "$csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
 done
 
 if [[ "${SKIP_MESHLAB:-0}" != 1 ]]; then
