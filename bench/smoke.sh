@@ -9,8 +9,9 @@
 #      every peer_compare run is also a cross-check: meshdev's, Embree's and CGAL's per-sample
 #      distances within 1e-6 of B's diagonal (peer_compare --check), and meshdev compare against
 #      meshlabserver. Its files go to build-bench/smoke/, never to results/performance/.
-# Exits non-zero if a build, a benchmark, a peer_compare check or a script fails. About 5 minutes
-# on 2 cores, most of it the build (docs/performance.md §1, "CI smoke run").
+# Exits non-zero if a build, a benchmark, a peer_compare check or a script fails. About 2 minutes
+# on 2 cores with the packages installed, most of it the build (docs/performance.md §1, "CI smoke
+# run").
 #   bash bench/smoke.sh
 # Environment: MESHDEV_JOBS (default nproc), MESHDEV_SMOKE_SAMPLES (default 50000).
 set -euo pipefail
