@@ -23,7 +23,8 @@
 // in float, so REL below about 1e-7 fails on rounding alone (a float of d is within 6e-8 d, and a
 // distance of a sample on B is the square root of a rounding-size square, about 1e-8 of the
 // diagonal); run_all.sh uses 1e-6. With --embree-float Embree's closest points are computed in
-// float too: 3.9e-7 of the diagonal was seen (bunny00 -> 7k), so allow 1e-5 there. A different
+// float too: 3.9e-7 of the diagonal was seen (`peer_compare bunny00.off bunny00_s7k.ply 50000
+// --engines meshdev,embree --embree-float --check 1e-6`), so allow 1e-5 there. A different
 // nearest face differs by far more, except between faces at almost equal distances, which give
 // almost equal distances anyway. Needs two engines.
 // --rounds R: after the table, meshdev and Embree (and Embree+hint with --embree-hint) are timed
@@ -918,18 +919,42 @@ int main(int argc, char** argv) {
   }
 
   // Agreement.
-  auto max_abs = [&](const auto& x, const auto& y) {
-    double m = 0;
-    if (x.size() != n || y.size() != n) return std::numeric_limits<double>::quiet_NaN();
-    for (std::size_t i = 0; i < n; ++i)
-      m = std::max(m, std::abs(static_cast<double>(x[i]) - static_cast<double>(y[i])));
-    return m;
+  // Two engines' per-sample distances, one pass: the largest finite |difference| (NaN if either
+  // engine has no distance per sample), and how many samples differ by more than `allowed` or
+  // have a distance that is not finite (all n if the counts differ; none if either did not run).
+  struct Disagreement {
+    double largest = std::numeric_limits<double>::quiet_NaN();
+    std::size_t bad = 0;
+    bool compared = false;
+  };
+  auto disagreement = [&](const auto& x, const auto& y, double allowed) {
+    Disagreement d;
+    if (x.empty() || y.empty()) return d;
+    d.compared = true;
+    if (x.size() != n || y.size() != n) {
+      d.bad = n;
+      return d;
+    }
+    d.largest = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double dx = static_cast<double>(x[i]), dy = static_cast<double>(y[i]);
+      const double diff = std::abs(dx - dy);
+      if (!std::isfinite(dx) || !std::isfinite(dy) || !(diff <= allowed)) ++d.bad;
+      if (std::isfinite(diff)) d.largest = std::max(d.largest, diff);
+    }
+    return d;
   };
   double mean_lo = std::numeric_limits<double>::infinity(), mean_hi = -mean_lo;
   for (const Row& r : rows)
     mean_lo = std::min(mean_lo, r.mean), mean_hi = std::max(mean_hi, r.mean);
   const double mean_diff = rows.empty() ? 0 : mean_hi - mean_lo;
   const double diag_b = meshdev::bounding_box(b).diagonal();
+  // --check's limit; without it only distances that are not finite count as bad.
+  const double allowed =
+      opt.check >= 0.0 ? opt.check * diag_b : std::numeric_limits<double>::infinity();
+  const Disagreement me = disagreement(d_meshdev, d_embree, allowed),
+                     mc = disagreement(d_meshdev, d_cgal, allowed),
+                     ec = disagreement(d_embree, d_cgal, allowed);
 
   // meshdev's ratio over each peer at the same thread count.
   auto meshdev_qps = [&](int th) {
@@ -977,34 +1002,23 @@ int main(int argc, char** argv) {
   std::printf(
       "agreement: mean distance spread %.3g (%.3g of B's diagonal); max per-sample |d|"
       " difference meshdev-embree %.3g, meshdev-cgal %.3g, embree-cgal %.3g\n",
-      mean_diff, diag_b > 0 ? mean_diff / diag_b : 0.0, max_abs(d_meshdev, d_embree),
-      max_abs(d_meshdev, d_cgal), max_abs(d_embree, d_cgal));
+      mean_diff, diag_b > 0 ? mean_diff / diag_b : 0.0, me.largest, mc.largest, ec.largest);
   if (!d_meshdev.empty()) std::printf("meshdev: %.3f equidistant faces per sample\n", meshdev_ties);
   // --check: every pair of engines that ran, each sample's distances within check x B's
   // diagonal; a distance that is not finite, or an engine without one per sample, fails.
   bool agreed = true;
   if (opt.check >= 0.0) {
-    const double allowed = opt.check * diag_b;
     double worst = 0.0;
-    std::size_t engines = 0, bad = 0;
-    auto compare = [&](const auto& x, const auto& y) {
-      if (x.empty() || y.empty()) return;
-      if (x.size() != n || y.size() != n) {
-        bad += n;
-        return;
-      }
-      for (std::size_t i = 0; i < n; ++i) {
-        const double dx = static_cast<double>(x[i]), dy = static_cast<double>(y[i]);
-        const double diff = std::abs(dx - dy);
-        if (!std::isfinite(dx) || !std::isfinite(dy) || !(diff <= allowed)) ++bad;
-        if (std::isfinite(diff)) worst = std::max(worst, diff);
-      }
-    };
-    for (bool ran : {!d_meshdev.empty(), !d_embree.empty(), !d_cgal.empty()}) engines += ran;
-    compare(d_meshdev, d_embree);
-    compare(d_meshdev, d_cgal);
-    compare(d_embree, d_cgal);
-    agreed = engines >= 2 && bad == 0;
+    std::size_t bad = 0, pairs = 0;
+    for (const Disagreement& d : {me, mc, ec}) {
+      if (!d.compared) continue;
+      ++pairs;
+      bad += d.bad;
+      if (std::isfinite(d.largest)) worst = std::max(worst, d.largest);
+    }
+    const std::size_t engines =
+        std::size_t{!d_meshdev.empty()} + !d_embree.empty() + !d_cgal.empty();
+    agreed = pairs > 0 && bad == 0;
     std::printf(
         "check (--check %g): %zu engines, largest per-sample |d| difference %.3g = %.3g of B's "
         "diagonal, %zu sample comparisons over the limit or not finite: %s\n",

@@ -75,8 +75,7 @@ def pair_name(label):
 
 def rounds(runs):
     """runs: [(rounds rows, peers rows or None)], one per run."""
-    def med(values):
-        return statistics.median(values)
+    med = statistics.median
 
     def span(values):
         return f"{med(values):.2f} ({min(values):.2f}–{max(values):.2f})"
