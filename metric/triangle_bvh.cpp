@@ -519,21 +519,25 @@ void TriangleBvh::build(int threads) {
       // Leaves are then full blocks of 4 except about one per subtree of kAlignBelow faces,
       // which keeps the structure near 55 bytes per face instead of about 77 (SAH alone leaves
       // blocks 2/3 full).
-      // (By key, then face: sorted as 64-bit integers, key bits above the face's, and the
-      // faces then moved once; sorting the 32-byte faces by their keys took twice as long.)
-      struct Order {
-        std::uint64_t key;
-        std::uint32_t at;
-      };
-      Order order[kAlignBelow];
+      // Ordered by key, then face, as 64-bit integers (key bits above the face's), all distinct:
+      // each face goes straight to its rank, the number of smaller keys (at most 32 x 32
+      // comparisons without a branch). std::sort of (key, position) pairs and a move by the
+      // sorted positions gave the same order with its comparisons' branches mispredicted:
+      // builds 7-9 % slower (peer_compare --ab 9 --ab-build, 2 threads: buildings.ply 1.077,
+      // torus1m_s100k 1.079; docs/performance.md §3, thirty-third session). Sorting the 32-byte
+      // faces by their keys took twice as long as that.
+      std::uint64_t key[kAlignBelow];
       Prim moved[kAlignBelow];
       for (std::uint32_t i = 0; i < count; ++i) {
         const Prim& prim = first[begin + i];
-        order[i] = {std::uint64_t{sortable_bits(prim.key(axis))} << 32 | prim.face(), i};
+        key[i] = std::uint64_t{sortable_bits(prim.key(axis))} << 32 | prim.face();
         moved[i] = prim;
       }
-      std::sort(order, order + count, [](const Order& x, const Order& y) { return x.key < y.key; });
-      for (std::uint32_t i = 0; i < count; ++i) first[begin + i] = moved[order[i].at];
+      for (std::uint32_t i = 0; i < count; ++i) {
+        std::uint32_t rank = 0;
+        for (std::uint32_t j = 0; j < count; ++j) rank += key[j] < key[i];
+        first[begin + rank] = moved[i];
+      }
       constexpr std::uint32_t kCuts = kAlignBelow / kLeafSize + 1;
       Bounds prefix[kCuts], prefix_centres[kCuts], suffix[kCuts], suffix_centres[kCuts];
       Bounds acc, acc_centres;

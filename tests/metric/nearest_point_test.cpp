@@ -216,7 +216,9 @@ TEST(NearestPoint, BvhIsTheSameForAnyBuildThreadCount) {
 // The build's invariants (every face in one leaf, every box holding what is below it) on faces in
 // space-coherent order, which the binning gathers in runs of one bin, and shuffled, which it
 // bins face by face; with faces of very unequal size, and a tall face last in a grid's order, so
-// the last run of a bin holds the face that makes its box.
+// the last run of a bin holds the face that makes its box; and with stacks of one triangle
+// repeated, whose equal centres the small subtrees' ordering (by centre, then face) tells apart
+// by face alone: two faces given one place would leave another face out.
 TEST(NearestPoint, BvhBoxesHoldTheirFacesInAnyFaceOrder) {
   TriMesh tall = test::grid(40);
   const auto v = static_cast<std::uint32_t>(tall.positions.size());
@@ -224,8 +226,18 @@ TEST(NearestPoint, BvhBoxesHoldTheirFacesInAnyFaceOrder) {
   tall.positions.push_back({0.99, 1.0, 5.0});
   tall.positions.push_back({1.0, 0.99, 5.0});
   tall.faces.push_back({v, v + 1, v + 2});
+  TriMesh stacks;  // 20 + 9 copies of two triangles, and three more along a line
+  stacks.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {3, 0, 0}, {4, 0, 0}, {3, 1, 0}};
+  for (int k = 0; k < 29; ++k)
+    stacks.faces.push_back(k < 20 ? Triangle{0, 1, 2} : Triangle{3, 4, 5});
+  for (std::uint32_t k = 0; k < 3; ++k) {
+    const auto at = static_cast<std::uint32_t>(stacks.positions.size());
+    const double x = 6.0 + 2.0 * k;
+    stacks.positions.insert(stacks.positions.end(), {{x, 0, 0}, {x + 1, 0, 0}, {x, 1, 0}});
+    stacks.faces.push_back({at, at + 1, at + 2});
+  }
   const std::vector<TriMesh> meshes = {tall, test::grid(60), test::icosphere(4),
-                                       test::random_soup(3000, 5)};
+                                       test::random_soup(3000, 5), stacks};
   for (std::size_t i = 0; i < meshes.size(); ++i)
     for (bool shuffled : {false, true}) {
       TriMesh m = meshes[i];
