@@ -522,10 +522,11 @@ void TriangleBvh::build(int threads) {
       // Ordered by key, then face, as 64-bit integers (key bits above the face's), all distinct:
       // each face goes straight to its rank, the number of smaller keys (at most 32 x 32
       // comparisons without a branch). std::sort of (key, position) pairs and a move by the
-      // sorted positions gave the same order with its comparisons' branches mispredicted:
-      // builds 7-9 % slower (peer_compare --ab 9 --ab-build, 2 threads: buildings.ply 1.077,
-      // torus1m_s100k 1.079; docs/performance.md §3, thirty-third session). Sorting the 32-byte
-      // faces by their keys took twice as long as that.
+      // sorted positions gave the same order with a branch per comparison, on keys in no order
+      // a predictor learns: builds 6-10 % slower (peer_compare --ab 9 --ab-build, 1 / 2
+      // threads: torus1m 1.059 / 1.069, buildings.ply 1.087 / 1.100, torus1m_shuffled 1.086 /
+      // 1.063; docs/performance.md §3, thirty-third session). Sorting the 32-byte faces by their
+      // keys took twice as long.
       std::uint64_t key[kAlignBelow];
       Prim moved[kAlignBelow];
       for (std::uint32_t i = 0; i < count; ++i) {
