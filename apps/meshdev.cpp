@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   // glibc: large blocks from the heap instead of their own mappings, and freed memory kept by
   // the process. A comparison's second direction then reuses the first one's samples and
   // deviation arrays (about 100 MB for 1M samples) instead of faulting fresh pages in one by one:
-  // half of `meshdev compare`'s page faults (docs/performance.md).
+  // half of `meshdev compare`'s page faults (docs/performance-log.md).
   // A failure (mallopt returns 0) costs speed only.
   mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, INT_MAX);

@@ -163,10 +163,10 @@ struct InlineSample {
 // barycentrics of its face and the target's at those of its tie's face. The numbers of the
 // general path (interpolate, unit_normal, unit_normal_distance, the raw Euclidean distance), bit
 // for bit, without its per-sample dispatch on storage, dimension and form: torus100k -> 1m
-// +2.8 %, armadillo -> 5k +6.6 % (docs/performance.md §3). The normals' chord |n - m| is computed
-// once for both normal measures, and raw groups of 1 to 3 values take their unrolled distance:
-// the two together torus1m -> 100k +2.8 %, torus100k -> 10k +1.5 %, torus100k -> 1m +0.7 %
-// (chunk-interleaved, docs/performance.md §3). The loop takes samples two at a time
+// +2.8 %, armadillo -> 5k +6.6 % (docs/performance-log.md §3). The normals' chord |n - m| is
+// computed once for both normal measures, and raw groups of 1 to 3 values take their unrolled
+// distance: the two together torus1m -> 100k +2.8 %, torus100k -> 10k +1.5 %, torus100k -> 1m
+// +0.7 % (chunk-interleaved, docs/performance-log.md §3). The loop takes samples two at a time
 // (inline_deviations_pair); this is for an odd one out and for groups the pair leaves. O(dim +
 // measures).
 void group_deviations(const InlineGroup& g, const InlineSample& x) {
@@ -238,7 +238,7 @@ inline Vec3x2 unit_normal2(const Vec3x2& n) {
 // ahead (deviations_of), against the scalar path one sample at a time, chunk-interleaved on
 // 2 threads: torus100k -> 1m +2.1 / +3.4 / +3.8 %, torus1m -> 100k +4.1 %, armadillo -> 5k
 // +5.4 %, buildings -> 40k +4.6 %, bunny00 -> 7k +2.9 %, torus100k -> 10k -0.4 / +1.4 %
-// (docs/performance.md §3). Groups of raw values of more than 3 components go one sample at a
+// (docs/performance-log.md §3). Groups of raw values of more than 3 components go one sample at a
 // time. O(sum of dims + measures).
 void inline_deviations_pair(const std::vector<InlineGroup>& groups, const InlineSample& x,
                             const InlineSample& y) {
@@ -417,7 +417,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   // which holds its samples (up to rounding; morton_order clamps), on the team. (Vertices no
   // face uses can only make the grid coarser: speed, not results. The box of the faces' corners
   // took 2-6 ms for torus1m's 1M faces, 2-6 % of torus1m -> 100k's 2-thread query phase, the
-  // vertices' 0.4-0.8 ms: docs/performance.md §3.)
+  // vertices' 0.4-0.8 ms: docs/performance-log.md §3.)
   const BoundingBox sample_box = position_bounding_box(ref, threads);
   // Stored sets of more than one chunk whose order is not spatially coherent are first put in
   // order of their coarse Morton cells (a stable counting sort): a chunk cut from the bucket
@@ -430,7 +430,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   // order (`meshdev compare` forward queries, 1M Monte Carlo samples, the cell order for every
   // dense set against only for incoherent ones: buildings 0.077-0.080 -> 0.059-0.063 s,
   // torus100k -> 10k 0.073 -> 0.063 s; torus1m with its faces shuffled keeps it, 0.12 s, and
-  // took 0.47-0.51 s with it switched off; docs/performance.md §3). Coherence
+  // took 0.47-0.51 s with it switched off; docs/performance-log.md §3). Coherence
   // is probed on pairs of consecutive samples: in a coherent order fewer than an eighth of them
   // lie in different cells of the 4 x 4 x 4 grid over the box (0-13 % on the test meshes), in a
   // shuffled one most do (64-85 %); a third is the threshold (a wrong guess costs speed only).
@@ -497,7 +497,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   // freed memory (the meshdev program's mallopt) finds the blocks of its previous call: allocated
   // by the team's threads, each in its own arena, the second thread's block was faulted in afresh
   // at every call (peer_compare torus100k -> 10k, 1M samples, 2 threads: 1,970 -> 359 page faults
-  // per further repeat; docs/performance.md §3).
+  // per further repeat; docs/performance-log.md §3).
   for (DeviationArray& values : out.values) values.resize(n);
   out.nearest_feature.resize(n);
   out.tie_count.resize(n);
@@ -551,7 +551,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
       // forward queries -9 %; Morton-sorted samples on those shuffled faces +35 %. Only for
       // references of at least DeviationOptions::prefetch_bytes (faces and prefetched channels):
       // below, their values are mostly in cache and the prefetches cost about 1 % (torus100k,
-      // 2.8 MB; docs/performance.md §3).
+      // 2.8 MB; docs/performance-log.md §3).
       for (std::size_t j = 0; j < count; ++j) {
         const Sample& s = chunk_samples[order[j]];
         points[j] = s.point;
@@ -570,8 +570,8 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
         // the inline path reads below, prefetched for the whole batch first: samples sparse on a
         // large target each land on a face of their own, whose values the search never read
         // (torus100k -> 1m: 16 MB of normals and temperatures; with the scalar path, batched,
-        // +3.0 % there, docs/performance.md §3). Only for targets of at least prefetch_bytes, as
-        // the reference's above.
+        // +3.0 % there, docs/performance-log.md §3). Only for targets of at least prefetch_bytes,
+        // as the reference's above.
         if (prefetch_target && !inline_path.empty())
           for (std::size_t j = from; j < to; ++j) {
             if (batch.tie_count(j - from) != 1) continue;

@@ -31,7 +31,7 @@ struct DeviationOptions {
 // (metric/raw_storage_allocator.h), and every element is then written once, by the thread that
 // computes that sample: zero-filling the arrays first (37 MB for a million samples and four
 // measures) took 2-3 % of a 2-thread run even where the allocator reused touched memory
-// (docs/performance.md §3). Read it like any vector; the statistics take it as a ConstSpan.
+// (docs/performance-log.md §3). Read it like any vector; the statistics take it as a ConstSpan.
 template <class T>
 using PerSample = std::vector<T, RawStorageAllocator<T>>;
 using DeviationArray = PerSample<double>;

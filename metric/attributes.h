@@ -173,7 +173,7 @@ inline bool is_unit_normal_measure(MeasureKind kind) {
 // no information). 2 asin(|n - m| / 2) up to 90 degrees, pi - 2 asin(|n + m| / 2) beyond, each
 // well conditioned where it is used (Kahan, "How futile are mindless assessments of roundoff",
 // 2006, sec. 12); as accurate as atan2(|n x m|, n.m) and cheaper in glibc (torus100k -> 10k,
-// 1 thread: 3.74 -> 4.16 M samples/s, docs/performance.md §3). Taking the chords lets a caller
+// 1 thread: 3.74 -> 4.16 M samples/s, docs/performance-log.md §3). Taking the chords lets a caller
 // that also reports |n - m| compute it once, and one that computes them two samples at a time
 // (the deviation loop) share this. O(1).
 inline double unit_normal_angle(double chord, double across, bool either_zero) {

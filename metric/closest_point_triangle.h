@@ -74,7 +74,7 @@ inline TriangleSetup triangle_setup(const Vec3& a, const Vec3& b, const Vec3& c)
 // registers. Always inlined: GCC 12 kept it out of line (1.1M calls for 1M queries on torus100k
 // -> torus1m), the call returned the hit through memory, and a setup passed to it was first
 // copied to the stack (an exact test took 420 instructions in the face region, 348 inlined
-// without the copy; docs/performance.md §3).
+// without the copy; docs/performance-log.md §3).
 [[gnu::always_inline]] inline TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a,
                                                                     const Vec3& b, const Vec3& c,
                                                                     const TriangleFrame& t) {

@@ -83,7 +83,7 @@ BoundingBox corner_bounding_box(const TriMesh& mesh, int threads) {
   if (mesh.faces.empty()) return bounding_box(mesh);
   // The corners of the face 8 ahead are prefetched: where faces are stored in no spatial order,
   // their positions are cache misses, which this loop's dependent min/max chains keep from
-  // overlapping on their own (torus1m with its faces shuffled: docs/performance.md §3).
+  // overlapping on their own (torus1m with its faces shuffled: docs/performance-log.md §3).
   constexpr std::size_t kAhead = 8;
   const std::size_t n = mesh.faces.size();
   return box_on_team(static_cast<std::int64_t>(n), threads, [&](BoundingBox& box, std::size_t f) {

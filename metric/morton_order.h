@@ -34,7 +34,7 @@ inline constexpr MortonSpread kMortonSpread{};
 
 // The bits a run is sorted by (morton_order): 24, three radix passes of 8. A run of 1,024 points
 // then has about 16,000 cells per point; 30 bits (four passes) cost more for the same queries,
-// 22 bits in two passes of 11 more still (the 2,048-bin prefix sums; docs/performance.md).
+// 22 bits in two passes of 11 more still (the 2,048-bin prefix sums; docs/performance-log.md).
 inline constexpr int kMortonSortBits = 24;
 
 // The cubic grid over a box that the codes are taken on: 2^21 cells per axis.
@@ -109,7 +109,7 @@ MortonRun morton_codes(const MortonGrid& grid, const Vec3* points, std::size_t n
 // cells from the same double operations, spread by shifts and masks instead of a table. On
 // samples already in order (a run cut from a sorted set), chunk-interleaved, 2 threads, three
 // runs: torus100k -> 10k +1.3 / +2.8 / +1.4 %, armadillo +1.5 / +1.8 / +1.8 %, torus100k -> 1m
-// +1.6 / +1.9 / +0.3 %, torus1m -> 100k +1.6 / +0.9 / +1.3 % (docs/performance.md §3).
+// +1.6 / +1.9 / +0.3 %, torus1m -> 100k +1.6 / +0.9 / +1.3 % (docs/performance-log.md §3).
 // Precondition: the CPU runs AVX2 (simd_level() != kBaseline, metric/plane_bounds.h); builds
 // without the x86 kernels only assert. O(n).
 MortonRun morton_codes_avx2(const Vec3* points, std::size_t n, const double origin[3], double scale,

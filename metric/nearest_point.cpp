@@ -129,7 +129,7 @@ namespace {
 
 // Both overloads of FaceEvaluator::evaluate, inlined into each: the corners are read from the
 // mesh (or the setup) in place and the closest point inlined, so an exact test makes no call
-// and no copy of the triangle (420 -> 348 instructions in the face region, docs/performance.md
+// and no copy of the triangle (420 -> 348 instructions in the face region, docs/performance-log.md
 // §3).
 [[gnu::always_inline]] inline SurfaceHit evaluate_face(const FaceEvaluator& eval, const Vec3& p,
                                                        std::uint32_t face, const Vec3& a,

@@ -42,7 +42,7 @@ struct QueryHint {
   const Vec3* source = nullptr;  // 3 corners, or nullptr
   // ... or that triangle by index: face `source_face` of `source_mesh` (used when `source` is
   // null). Its corners are read only where a target triangle comes that close, not for every
-  // query (compute_deviations: +1-2 % on torus1m -> 100k, docs/performance.md §3).
+  // query (compute_deviations: +1-2 % on torus1m -> 100k, docs/performance-log.md §3).
   const TriMesh* source_mesh = nullptr;
   std::uint32_t source_face = kNoFace;
   std::array<double, 3> source_bary{1, 0, 0};

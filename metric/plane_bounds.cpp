@@ -167,7 +167,7 @@ bool cpu_has(SimdLevel level) {
 SimdLevel detect() {
   // AVX-512 is not the default: its sixteen lanes cut instructions but ran 5-8 % slower than
   // AVX2 on this project's benchmark machine, and 0.5-4 % slower on a later Intel Xeon with
-  // AVX-512-FP16 (docs/performance.md §3).
+  // AVX-512-FP16 (docs/performance-log.md §3).
   const SimdLevel best = cpu_has(SimdLevel::kAvx2) ? SimdLevel::kAvx2 : SimdLevel::kBaseline;
   const char* env = std::getenv("MESHDEV_SIMD");
   if (env == nullptr || *env == '\0') return best;

@@ -16,7 +16,7 @@
 // samples lie near each other whatever order the file stores them in: the nearest-point queries
 // run in chunks of consecutive samples, and on a mesh stored in no spatial order a chunk made in
 // index order covered faces from all over it (the default samples' queries 1.11-1.13 times as
-// slow on buildings.ply, 1.38 times on armadillo: docs/performance.md §3). Edge samples follow
+// slow on buildings.ply, 1.38 times on armadillo: docs/performance-log.md §3). Edge samples follow
 // their edges' vertex indices. Each face's samples are consecutive, in the order its kind makes
 // them.
 //
@@ -89,7 +89,7 @@ struct SampleSet {
 // demand: exactly the samples, in the same order, that sample_surface gives for Monte Carlo face
 // sampling alone, which makes them through this class. compare_meshes streams them (through
 // SampleSequence, below) to compute_deviations a chunk at a time instead of storing the set (72
-// bytes per sample, which a 1M-sample direction first had to fault in: docs/performance.md §3,
+// bytes per sample, which a 1M-sample direction first had to fault in: docs/performance-log.md §3,
 // thirteenth session). `mesh` must outlive it. Holds one offset and one face per face (12 bytes),
 // the faces in the visit order (detail::face_visit_order); the samples
 // weigh weight() each.

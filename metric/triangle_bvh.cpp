@@ -73,7 +73,7 @@ constexpr double kMaxExtent = 1e140;
 // (peer_compare --threads 1, M samples/s: torus100k -> torus1m 2.38-2.44 -> 2.67-2.78,
 // buildings_s40k -> buildings in face order 3.49-3.51 -> 4.43-4.54, torus1m -> 100k 3.95-4.10 ->
 // 4.46-4.47; 2 mean edges for both kinds was 2-4 % faster on the dense pairs but slower on the
-// sparse ones; docs/performance.md §3). The minimum sizes went from 8 / 3 to 4 / 2 in the same
+// sparse ones; docs/performance-log.md §3). The minimum sizes went from 8 / 3 to 4 / 2 in the same
 // way: buildings_s40k -> buildings 4.49-4.53 -> 4.85-4.93, torus100k -> torus1m and armadillo
 // +2-3 %, the rest within 1 %.
 constexpr std::size_t kPacketSize = 64;
@@ -86,7 +86,7 @@ constexpr std::size_t kMinBlockPacket = 2;
 // queries are answered one by one. 64 -> 128 blocks (`meshdev compare buildings.ply
 // buildings_s40k.ply`, default sampling: queries of such packets 233k -> 104k of 8.2M; its
 // queries 2-6 % faster; peer_compare --ab 8 buildings_s40k -> buildings +3.5 %, the other pairs
-// within 1 %); 256 was no faster than 128 (docs/performance.md §3, twenty-fifth session).
+// within 1 %); 256 was no faster than 128 (docs/performance-log.md §3, twenty-fifth session).
 constexpr std::size_t kMaxBlocks = 128;
 constexpr std::size_t kDenseQueries = 3;
 // A packet's guess of its queries' distances: this factor times the largest distance of the
@@ -103,7 +103,7 @@ constexpr std::size_t kGuessMisses = 4;
 // from the last packet alone then fell short for queries farther than it (about 1.8 % of the
 // queries there, each then searched from the root). Chunk-interleaved, 2 threads, 8-10 runs:
 // torus100k -> 1m +3.4 % (decays 0.5 / 0.8 / 0.9 / 0.95: +2.0 / +3.4 / +2.2 / +2.2 %), the
-// other five pairs of docs/performance.md -0.5 % to +1.6 % (docs/performance.md §3).
+// other five pairs of docs/performance.md -0.5 % to +1.6 % (docs/performance-log.md §3).
 constexpr double kGuessDecay = 0.8;
 
 // A float box; extending by float coordinates is exact.
@@ -190,7 +190,7 @@ std::uint32_t sortable_bits(float f) {
 // the union of its children's; smaller ranges keep the exact SAH over full blocks of 4 below.
 // No pass over a range is needed to split it, so the splits took 14-15 ms on buildings.ply,
 // the sort 11 ms (codes and three 10-bit radix passes on the team, then the records moved);
-// queries in such trees were within 3 % of the SAH tree's (docs/performance.md §3, thirteenth
+// queries in such trees were within 3 % of the SAH tree's (docs/performance-log.md §3, thirteenth
 // session). Coherent orders keep binned SAH, which then costs about what the sort and the
 // Morton splits cost together and gives trees 2-3 % faster to query (torus100k -> torus1m).
 
@@ -389,7 +389,7 @@ void TriangleBvh::build(int threads) {
   const int team = threads > 0 ? threads : omp_get_max_threads();
   // A vertex in the float frame (in double), computed where it is read: a stored copy of the
   // frame was 24 bytes per vertex written in a pass of its own (torus1m: 12 MB; the same trees,
-  // docs/performance.md §3, twenty-seventh session).
+  // docs/performance-log.md §3, twenty-seventh session).
   const Vec3 frame_origin = origin_;
   const double frame_scale = scale_;
   auto frame = [&m, frame_origin, frame_scale](std::uint32_t v) {
@@ -409,7 +409,7 @@ void TriangleBvh::build(int threads) {
   std::vector<Bounds> part_bounds(static_cast<std::size_t>(team)), part_centres(part_bounds);
   // The corners of the face kRecordAhead on are prefetched: where faces are stored in no spatial
   // order their frame coordinates are cache misses (torus1m with its faces shuffled: the build
-  // 0.19 -> 0.17 s; coherent meshes unchanged; docs/performance.md §3).
+  // 0.19 -> 0.17 s; coherent meshes unchanged; docs/performance-log.md §3).
   constexpr std::int64_t kRecordAhead = 8;
 #pragma omp parallel num_threads(team)
   {
@@ -525,8 +525,8 @@ void TriangleBvh::build(int threads) {
       // sorted positions gave the same order with a branch per comparison, on keys in no order
       // a predictor learns: builds 6-10 % slower (peer_compare --ab 9 --ab-build, 1 / 2
       // threads: torus1m 1.059 / 1.069, buildings.ply 1.087 / 1.100, torus1m_shuffled 1.086 /
-      // 1.063; docs/performance.md §3, thirty-third session). Sorting the 32-byte faces by their
-      // keys took twice as long.
+      // 1.063; docs/performance-log.md §3, thirty-third session). Sorting the 32-byte faces by
+      // their keys took twice as long.
       std::uint64_t key[kAlignBelow];
       Prim moved[kAlignBelow];
       for (std::uint32_t i = 0; i < count; ++i) {
@@ -1269,7 +1269,7 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
 // (cachegrind's branch model: 1.8 M mispredictions there for 1 M queries of torus100k -> 1m,
 // before 186b11d); chunk-interleaved,
 // torus100k -> 1m +1.3-1.9 %, torus1m -> 100k +1.5 %, torus100k -> 10k +0.2-2.6 %
-// (docs/performance.md §3).
+// (docs/performance-log.md §3).
 bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double reach,
                                 PacketScratch& scratch) const {
   scratch.block_count = 0;
@@ -1499,7 +1499,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // its misses one at a time, which the evaluation's long body keeps from overlapping. Where the
   // target's faces are stored in no spatial order (torus1m's shuffled) the exact tests took
   // 20 % of the process; peer_compare torus100k -> that mesh +26 %, -> torus1m itself +2.5 %,
-  // the others within noise (docs/performance.md §3).
+  // the others within noise (docs/performance-log.md §3).
   auto prefetch_corners = [&](std::uint32_t face) {
     const Triangle& t = mesh.faces[face];
     for (int corner = 0; corner < 3; ++corner) __builtin_prefetch(&mesh.positions[t[corner]]);
@@ -1546,7 +1546,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
         // The kept lanes vary from query to query, and the loop over them that this replaced
         // branched on each (cachegrind's branch model: 1.9 M mispredictions there for 1 M
         // queries of torus100k -> 1m). Chunk-interleaved: torus100k -> 1m +4.0-4.7 %,
-        // torus1m -> 100k +1.3-2.2 %, the dense torus100k -> 10k unchanged (docs/performance.md
+        // torus1m -> 100k +1.3-2.2 %, the dense torus100k -> 10k unchanged (docs/performance-log.md
         // §3).
         unsigned keep =
             static_cast<unsigned>(~greater_mask(box_sq_distances_f4(blo, bhi, pf), box_cut)) & 0xfu;

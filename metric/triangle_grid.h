@@ -6,7 +6,7 @@
 //        exceed 16 F); every triangle listed in the cells its bounding box overlaps; occupied
 //        cells in an open-addressing hash table. O(F) expected time. Memory: the BVH's plus
 //        the table and references, 77-227 bytes per face in all on the meshes measured
-//        (docs/performance.md §3), which is why the BVH alone stays the default.
+//        (docs/performance-log.md §3), which is why the BVH alone stays the default.
 // Query: test the triangles listed in p's cell. If the tie limit around the best one found fits
 //        inside that cell, every triangle that can be a tie overlaps the cell and was tested, so
 //        the answer is exact; otherwise (far queries, cell borders, empty cells) the BVH answers,

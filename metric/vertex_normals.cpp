@@ -40,7 +40,7 @@ void compute_vertex_normals(const TriMesh& mesh, NormalWeighting weighting, int 
   // to the corners it owns, then normalises its range. Every vertex's sum is thus taken in face
   // order, as on one thread; a face with corners in two ranges has its normal computed twice.
   // (Serially, with the sums scattered by one thread: torus1m 30 ms; on 2 threads 18-20 ms,
-  // docs/performance.md §3.)
+  // docs/performance-log.md §3.)
 #pragma omp parallel num_threads(team) if (team > 1 && faces >= 4096)
   {
     const auto me = static_cast<std::size_t>(omp_get_thread_num());

@@ -43,7 +43,7 @@ BENCHMARK(BM_FaceVisitOrder)
 // moved off it (5,120 faces: 16 samples per face, dense, as buildings.ply against its 40k-face
 // simplification), in the samplers' order (vertices, then faces, each along a Morton curve) and
 // in index order (vertices, then faces, by index: the samplers' order before the twenty-fourth
-// session; docs/performance.md §3). The same samples and results either way.
+// session; docs/performance-log.md §3). The same samples and results either way.
 void BM_DefaultSamplesQueried(benchmark::State& state) {
   const bool curve = state.range(0) != 0;
   const int threads = static_cast<int>(state.range(1));
