@@ -5,7 +5,8 @@
 #   results/performance/meshlab.csv   whole-process meshdev compare vs meshlabserver
 #   results/performance/peers.png     throughput vs faces of B and vs samples (matplotlib)
 #   results/performance/peers_per_cpu.png  the same per CPU-second (fair on a loaded machine)
-#   results/performance/peers.log     everything printed
+#   results/performance/peers.log     everything printed, ending with issue 3's targets against
+#                                     this run (bench/peers/table_md.py --targets)
 # Series: "pairs" (the issue's pairs and the real meshes), "faces" (A = torus100k, B = bumpy tori
 # from 10k to 1M faces), "samples" (torus100k -> 10k with 100k..3M samples).
 #
@@ -87,4 +88,9 @@ say "== plot"
 /usr/bin/python3 "$repo/bench/peers/plot_peers.py" "$csv" "$out/peers_per_cpu.png" cpu 2>&1 | tee -a "$log"
 say "== the pairs' rounds (medians)"
 /usr/bin/python3 "$repo/bench/peers/table_md.py" --rounds "$rounds_csv,$csv" 2>&1 | tee -a "$log"
+say "== issue 3's targets against this run (docs/performance.md)"
+meshlab_csv=()
+[[ "${SKIP_MESHLAB:-0}" != 1 && -s "$out/meshlab.csv" ]] && meshlab_csv=("$out/meshlab.csv")
+/usr/bin/python3 "$repo/bench/peers/table_md.py" --targets "$rounds_csv" "$csv" "$log" \
+  "${meshlab_csv[@]}" 2>&1 | tee -a "$log"
 say "done: $csv $rounds_csv $out/peers.png $log (load average now $(cut -d' ' -f1-3 /proc/loadavg))"

@@ -2,10 +2,16 @@
 """Markdown tables for docs/performance.md from results/performance/peers.csv (and meshlab.csv).
 usage: table_md.py peers.csv [meshlab.csv]
        table_md.py --rounds ROUNDS.csv[,PEERS.csv] [ROUNDS2.csv[,PEERS2.csv] ...]
+       table_md.py --targets ROUNDS.csv PEERS.csv PEERS.log [MESHLAB.csv ...]
 The second form: the interleaved rounds (peer_compare --rounds-csv) as medians per pair, one
 value per run in each cell (separated by " · "); with the run's PEERS.csv (its --csv) the
-2-thread speed-up of the best-of rows too."""
+2-thread speed-up of the best-of rows too.
+The third form: issue 3's targets against one run_all.sh run (its rounds.csv, peers.csv,
+peers.log and any MeshLab CSVs), one row per target with the measured values and whether each
+is met: the "latest run" column of the table at the top of docs/performance.md. Pairs missing
+from the run are said to be."""
 import csv
+import re
 import statistics
 import sys
 from collections import OrderedDict
@@ -115,7 +121,102 @@ def rounds(runs):
     print("\nMedians over each run's rounds (range); runs separated by \" · \".\n")
 
 
+def build_lines(log_path, pair):
+    """peer_compare's two build-against-query ratios on 2 threads for one pair of its log:
+    (first build s, first query s, ratio), (best build s, best query s, ratio)."""
+    first = best = None
+    section = None
+    for line in open(log_path):
+        if line.startswith("-- "):
+            section = line[3:].strip()
+        if section != pair or "2 thread" not in line or "build" not in line:
+            continue
+        numbers = re.findall(r"([0-9.]+) s(?![a-z])", line)
+        ratio = float(line.rsplit("=", 1)[1])
+        if "first build" in line:
+            first = (float(numbers[0]), float(numbers[1]), ratio)
+        elif "best of" in line:
+            best = (float(numbers[0]), float(numbers[1]), ratio)
+    return first, best
+
+
+def targets(rounds_path, peers_path, log_path, meshlab_paths):
+    med = statistics.median
+    rows = list(csv.DictReader(open(rounds_path)))
+    best = list(csv.DictReader(open(peers_path)))
+
+    def rounds_of(label, threads):
+        return [r for r in rows if r["label"] == label and r["threads"] == threads]
+
+    def verdict(ok):
+        return "met" if ok else "**missed**"
+
+    samples = max((int(r["samples"]) for r in rows), default=0)
+    print(f"| target (2 threads unless said) | measured (rounds' medians unless said; up to "
+          f"{samples:,} samples, the targets' are 1M) | |")
+    print("|---|---|---|")
+    issue_pairs = ["pairs|torus100k->10k", "pairs|torus100k->1m", "pairs|torus1m->100k"]
+    for label in issue_pairs:
+        if not rounds_of(label, "2"):
+            print(f"| ≥ 10 M samples/s on {pair_name(label)} | not in this run | – |")
+            continue
+        q = med([float(r["meshdev_qps"]) for r in rounds_of(label, "2")]) / 1e6
+        print(f"| ≥ 10 M samples/s on {pair_name(label)} | {q:.2f} M/s | {verdict(q >= 10)} |")
+    for label in issue_pairs:
+        if not rounds_of(label, "1") or not rounds_of(label, "2"):
+            print(f"| ≥ 3× Embree on {pair_name(label)} | not in this run | – |")
+            continue
+        x2 = med([float(r["meshdev_over_embree"]) for r in rounds_of(label, "2")])
+        x1 = med([float(r["meshdev_over_embree"]) for r in rounds_of(label, "1")])
+        print(f"| ≥ 3× Embree on {pair_name(label)} | {x2:.2f}× (1 thread {x1:.2f}×) "
+              f"| {verdict(x2 >= 3)} |")
+    for path in meshlab_paths:
+        for r in csv.DictReader(open(path)):
+            ratio = float(r["ratio_xvfb"])
+            print(f"| whole process ≥ 10× MeshLab (`xvfb-run`), {r['a']} ↔ {r['b']} "
+                  f"({path.rsplit('/', 1)[-1]}) | {ratio:.2f}× (meshdev {float(r['meshdev_s']):.3f}"
+                  f" s, MeshLab {float(r['meshlab_xvfb_s']):.2f} s; "
+                  f"{int(r['samples_per_direction']):,} samples per direction) "
+                  f"| {verdict(ratio >= 10)} |")
+    sizes = [float(r["struct_bytes_per_face"]) for r in best if r["engine"] == "meshdev"]
+    if sizes:
+        print(f"| structure ≤ 64 bytes per face | {min(sizes):.1f}–{max(sizes):.1f} (every "
+              f"target) | {verdict(max(sizes) <= 64)} |")
+    labels = []
+    for r in rows:
+        if r["label"] not in labels:
+            labels.append(r["label"])
+    speedups = []
+    for label in labels:
+        if not rounds_of(label, "1") or not rounds_of(label, "2"):
+            continue
+        q = {t: med([float(r["meshdev_qps"]) for r in rounds_of(label, t)]) for t in ("1", "2")}
+        speedups.append((q["2"] / q["1"], pair_name(label)))
+    if not speedups:
+        print("| 2-thread speed-up ≥ 1.8× | not in this run | – |")
+    else:
+        below = [f"{name} {x:.2f}×" for x, name in sorted(speedups) if x < 1.8]
+        met = len(speedups) - len(below)
+        print(f"| 2-thread speed-up ≥ 1.8× | {min(speedups)[0]:.2f}–{max(speedups)[0]:.2f}× on "
+              f"{len(speedups)} pairs | " + (verdict(True) if not below else
+                                              f"met on {met} of {len(speedups)}; below: "
+                                              + ", ".join(below)) + " |")
+    first, best_build = build_lines(log_path, "pairs|torus100k->1m")
+    n = max((int(r["samples"]) for r in rounds_of("pairs|torus100k->1m", "2")), default=0)
+    if first is None or best_build is None:
+        print("| build of torus1m below the query of 1M samples | not in the log | – |")
+    else:
+        print(f"| build of torus1m below the query of 1M samples (here {n:,}) | first build "
+              f"{first[0]:.3f} s "
+              f"against the first query {first[1]:.3f} s ({first[2]:.0%}); best of the builds "
+              f"{best_build[0]:.3f} s against the best query {best_build[1]:.3f} s "
+              f"({best_build[2]:.0%}) | {verdict(first[2] < 1 and best_build[2] < 1)} |")
+
+
 if __name__ == "__main__":
+    if len(sys.argv) >= 5 and sys.argv[1] == "--targets":
+        targets(sys.argv[2], sys.argv[3], sys.argv[4], sys.argv[5:])
+        sys.exit(0)
     if len(sys.argv) >= 3 and sys.argv[1] == "--rounds":
         runs = []
         for arg in sys.argv[2:]:
