@@ -51,7 +51,7 @@ while read -r a b n base; do
     exit 2
   }
   total=$(sed -n 's/^summary: //p' "$work/out")
-  samples=$(sed -n 's/^ *\([0-9]*\) samples on A .*/\1/p' "$work/log" | head -n 1)
+  samples=$(awk '$2 == "samples" && $3 == "on" && $4 == "A" { print $1; exit }' "$work/log")
   [[ -n "$total" && -n "$samples" ]] || { echo "instructions_per_sample: no count for $a -> $b" >&2; exit 2; }
   per=$(awk -v t="$total" -v s="$samples" 'BEGIN { printf "%.1f", t / s }')
   verdict=$(awk -v p="$per" -v b="$base" -v tol="$tolerance" 'BEGIN {
