@@ -57,8 +57,7 @@ while read -r a b n base; do
   verdict=$(awk -v p="$per" -v b="$base" -v tol="$tolerance" 'BEGIN {
     if (b <= 0) { print "ABOVE (no baseline)"; exit }
     r = p / b
-    if (r > 1 + tol) print "ABOVE"; else if (r < 1 - tol) print "below"; else print "ok"
-    printf "%.4f\n", r }' | paste -sd' ')
+    printf "%s %.4f\n", (r > 1 + tol ? "ABOVE" : (r < 1 - tol ? "below" : "ok")), r }')
   printf '%-22s -> %-22s %8d samples: %8.1f instructions per sample, baseline %s (%s)\n' \
     "$a" "$b" "$samples" "$per" "$base" "$verdict"
   case $verdict in

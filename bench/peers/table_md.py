@@ -79,6 +79,11 @@ def pair_name(label):
     return (label.split("|", 1)[1] if "|" in label else label).replace("->", "→")
 
 
+def labels_of(rows):
+    """The rows' labels, each once, in their first order."""
+    return list(OrderedDict.fromkeys(r["label"] for r in rows))
+
+
 def rounds(runs):
     """runs: [(rounds rows, peers rows or None)], one per run."""
     med = statistics.median
@@ -86,11 +91,7 @@ def rounds(runs):
     def span(values):
         return f"{med(values):.2f} ({min(values):.2f}–{max(values):.2f})"
 
-    pairs = []
-    for rows, _ in runs:
-        for r in rows:
-            if r["label"] not in pairs:
-                pairs.append(r["label"])
+    pairs = labels_of([r for rows, _ in runs for r in rows])
     print("| pair | meshdev M/s, 1 / 2 threads | ÷ Embree, 1 thread | ÷ Embree, 2 threads "
           "| ÷ Embree+hint, 2 threads | 2-thread speed-up (best-of; rounds) |")
     print("|---|---:|---:|---:|---:|---:|")
@@ -182,12 +183,8 @@ def targets(rounds_path, peers_path, log_path, meshlab_paths):
     if sizes:
         print(f"| structure ≤ 64 bytes per face | {min(sizes):.1f}–{max(sizes):.1f} (every "
               f"target) | {verdict(max(sizes) <= 64)} |")
-    labels = []
-    for r in rows:
-        if r["label"] not in labels:
-            labels.append(r["label"])
     speedups = []
-    for label in labels:
+    for label in labels_of(rows):
         if not rounds_of(label, "1") or not rounds_of(label, "2"):
             continue
         q = {t: med([float(r["meshdev_qps"]) for r in rounds_of(label, t)]) for t in ("1", "2")}
