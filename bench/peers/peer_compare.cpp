@@ -3,20 +3,26 @@
 //   (a) meshdev: compute_deviations() with geometry + normal + "temperature" (the whole
 //       per-sample unit of the metric: closest point, all equidistant ties, three measures);
 //   (b) Embree 3 rtcPointQuery, given its best (the research note's setup): samples in Morton
-//       order, RTC_BUILD_QUALITY_LOW (its fast build), shared float buffers, and a callback that
-//       computes the exact closest point on OUR arrays (never rtcGetGeometryBufferData; in double
-//       on our double positions, or in float with --embree-float), then
-//       interpolation of one 3-float vertex attribute and writes of distance, face, attribute;
+//       order (a Hilbert order, --order hilbert, was as fast for it on 2 threads and up to 5 %
+//       faster on 1: docs/performance.md §4), RTC_BUILD_QUALITY_LOW (its fast build), shared
+//       float buffers, and a callback that computes the exact closest point on OUR arrays (never
+//       rtcGetGeometryBufferData; in double on our double positions, or in float with
+//       --embree-float), then interpolation of one 3-float vertex attribute and writes of
+//       distance, face, attribute;
 //   (c) CGAL 5.5 AABB tree (Epick) closest_point_and_primitive with its KD-tree accelerator, then
 //       barycentrics and the same interpolation.
 // For each: build time, query throughput on each thread count (best of --repeats), CPU share =
 // process CPU seconds / (wall x threads), and meshdev's speed ratio over each peer. Checks that the
 // three agree (mean distance, max per-sample difference). Prints a table and CSV rows.
 //
-// usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2] [--repeats 3]
-//                           [--engines meshdev,embree,cgal] [--embree-hint] [--embree-float]
-//                           [--rounds R [--rounds-csv FILE]] [--csv FILE] [--label NAME]
-//                           [--ab R [--ab-chunk C] [--ab-build]] [--check REL]
+// usage: peer_compare A B N [--seed S] [--order morton|hilbert|native] [--threads 1,2]
+//                           [--repeats 3] [--engines meshdev,embree,cgal] [--embree-hint]
+//                           [--embree-float] [--rounds R [--rounds-csv FILE]] [--csv FILE]
+//                           [--label NAME] [--ab R [--ab-chunk C] [--ab-build]] [--check REL]
+// --order: the order every engine gets the samples in (sorted outside the timing): morton (the
+// default, Embree's best: the research note's setup), hilbert (a Hilbert curve on the same grid;
+// meshdev puts each chunk of 1,024 back in Morton order, as it does any order) or native (the
+// sampler's: face by face, the faces along a Morton curve of their centroids).
 // --check REL: the agreement as a gate: the process exits 1 (after its CSV rows are written) if
 // the per-sample distances of any two engines differ by more than REL times B's bounding-box
 // diagonal, or an engine gave a distance that is not finite. The peers hand their distances over
@@ -162,20 +168,55 @@ std::uint64_t spread21(std::uint64_t x) {
   return x;
 }
 
-// Sorts the samples along the Morton curve of a 2^21 grid over `box` (A's bounding box: the grid
-// compute_deviations orders its chunks on, so it finds them already sorted and leaves them).
-void morton_sort(meshdev::SampleSet& set, const meshdev::BoundingBox& box) {
+// The index along a 3D Hilbert curve of the cell (x, y, z) of a 2^21 grid: Skilling's transform
+// of the coordinates into the curve's "transposed" form, then its bits interleaved as Morton's
+// are (J. Skilling, "Programming the Hilbert curve", AIP Conf. Proc. 707, 2004). Consecutive
+// indices are cells that share a face. O(21).
+std::uint64_t hilbert21(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  std::uint32_t c[3] = {x, y, z};
+  for (std::uint32_t q = 1u << 20; q > 1; q >>= 1) {  // undo the excess work
+    const std::uint32_t low = q - 1;
+    for (std::uint32_t& ci : c) {
+      if ((ci & q) != 0) {
+        c[0] ^= low;  // invert
+      } else {
+        const std::uint32_t t = (c[0] ^ ci) & low;  // exchange
+        c[0] ^= t;
+        ci ^= t;
+      }
+    }
+  }
+  c[1] ^= c[0];  // Gray encode
+  c[2] ^= c[1];
+  std::uint32_t t = 0;
+  for (std::uint32_t q = 1u << 20; q > 1; q >>= 1)
+    if ((c[2] & q) != 0) t ^= q - 1;
+  for (std::uint32_t& ci : c) ci ^= t;
+  return spread21(c[2]) | spread21(c[1]) << 1 | spread21(c[0]) << 2;
+}
+
+// How an --order is named in the printed table.
+const char* order_name(const std::string& order) {
+  return order == "morton" ? "Morton" : order == "hilbert" ? "Hilbert" : "native";
+}
+
+// Sorts the samples along a space-filling curve of a 2^21 grid over `box` (A's bounding box):
+// Morton's (the grid compute_deviations orders its chunks on, so it finds them already sorted and
+// leaves them) or, with `hilbert`, Hilbert's (which compute_deviations puts back in Morton order a
+// chunk at a time, as it does any order).
+void curve_sort(meshdev::SampleSet& set, const meshdev::BoundingBox& box, bool hilbert) {
   const Vec3 ext = box.max - box.min;
   const double scale = 2097151.0 / std::max({ext.x, ext.y, ext.z, 1e-300});
-  auto cell = [&](double x, double x0) -> std::uint64_t {  // clamped to the grid, as there
+  auto cell = [&](double x, double x0) -> std::uint32_t {  // clamped to the grid, as there
     const double t = (x - x0) * scale;
-    return t >= 0.0 ? (t < 2097151.0 ? static_cast<std::uint64_t>(t) : 2097151u) : 0u;
+    return t >= 0.0 ? (t < 2097151.0 ? static_cast<std::uint32_t>(t) : 2097151u) : 0u;
   };
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(set.samples.size());
   for (std::size_t i = 0; i < set.samples.size(); ++i) {
     const Vec3& p = set.samples[i].point;
-    keys[i] = {spread21(cell(p.x, box.min.x)) | spread21(cell(p.y, box.min.y)) << 1 |
-                   spread21(cell(p.z, box.min.z)) << 2,
+    const std::uint32_t x = cell(p.x, box.min.x), y = cell(p.y, box.min.y),
+                        z = cell(p.z, box.min.z);
+    keys[i] = {hilbert ? hilbert21(x, y, z) : spread21(x) | spread21(y) << 1 | spread21(z) << 2,
                static_cast<std::uint32_t>(i)};
   }
   std::sort(keys.begin(), keys.end());
@@ -453,7 +494,7 @@ struct Options {
   std::string a, b, label;
   std::size_t samples = 1000000;
   std::uint64_t seed = 1;
-  bool morton = true;
+  std::string order = "morton";  // the samples' order: morton, hilbert or native (the sampler's)
   std::vector<int> threads{1, 2};
   int repeats = 3;
   std::vector<std::string> engines{"meshdev", "embree", "cgal"};
@@ -479,8 +520,9 @@ std::vector<std::string> split(const std::string& s) {
 
 [[noreturn]] void usage() {
   std::fprintf(stderr,
-               "usage: peer_compare A B N [--seed S] [--order morton|native] [--threads 1,2]\n"
-               "                          [--repeats 3] [--engines meshdev,embree,cgal]\n"
+               "usage: peer_compare A B N [--seed S] [--order morton|hilbert|native]\n"
+               "                          [--threads 1,2] [--repeats 3]\n"
+               "                          [--engines meshdev,embree,cgal]\n"
                "                          [--embree-hint] [--embree-float]\n"
                "                          [--rounds R [--rounds-csv FILE]] [--csv FILE]\n"
                "                          [--label NAME]\n"
@@ -501,8 +543,8 @@ Options parse(int argc, char** argv) {
       o.seed = std::stoull(next());
     else if (s == "--order") {
       const std::string v = next();
-      if (v != "morton" && v != "native") usage();
-      o.morton = v == "morton";
+      if (v != "morton" && v != "hilbert" && v != "native") usage();
+      o.order = v;
     } else if (s == "--threads") {
       o.threads.clear();
       for (const auto& t : split(next())) o.threads.push_back(std::stoi(t));
@@ -718,7 +760,7 @@ int main(int argc, char** argv) {
   meshdev::SampleSet set = meshdev::sample_surface(a, so, box_a.diagonal());
   const double t_sample = seconds_since(t0);
   t0 = Clock::now();
-  if (opt.morton) morton_sort(set, box_a);
+  if (opt.order != "native") curve_sort(set, box_a, opt.order == "hilbert");
   const double t_sort = seconds_since(t0);
   const std::size_t n = set.samples.size();
 
@@ -727,8 +769,8 @@ int main(int argc, char** argv) {
   std::printf(
       "  %zu samples on A (Monte Carlo, seed %llu, %s order; sampling %.3f s, sort %.3f "
       "s), temperature channel: %s\n",
-      n, static_cast<unsigned long long>(opt.seed), opt.morton ? "Morton" : "native", t_sample,
-      t_sort, temperature.c_str());
+      n, static_cast<unsigned long long>(opt.seed), order_name(opt.order), t_sample, t_sort,
+      temperature.c_str());
   std::printf(
       "  load average at start: %s (2-core machine: > 0.5 means the numbers are "
       "loaded)\n",
@@ -873,7 +915,7 @@ int main(int argc, char** argv) {
         std::tie(r.mean, r.max) = mean_max(out.distance);
         r.struct_mib = embree_mib;
         r.bytes_per_face = embree_mib * 1048576.0 / static_cast<double>(b.num_faces());
-        r.note = std::string(opt.morton ? "Morton" : "native order") + ", LOW build" +
+        r.note = std::string(order_name(opt.order)) + " order, LOW build" +
                  (hint ? ", previous-face bound" : "") +
                  (opt.embree_float ? ", float callback" : ", double callback");
         rows.push_back(r);
@@ -1086,8 +1128,8 @@ int main(int argc, char** argv) {
         std::snprintf(line, sizeof line,
                       "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s\n", label.c_str(),
                       basename(opt.a).c_str(), basename(opt.b).c_str(), a.num_faces(),
-                      b.num_faces(), n, opt.morton ? "morton" : "native", th, r + 1, qps(m) * 1e6,
-                      qps(e) * 1e6, qps(h) * 1e6, e.wall / m.wall, h.wall / m.wall,
+                      b.num_faces(), n, opt.order.c_str(), th, r + 1, qps(m) * 1e6, qps(e) * 1e6,
+                      qps(h) * 1e6, e.wall / m.wall, h.wall / m.wall,
                       load_start.substr(0, load_start.find(' ')).c_str());
         rounds_csv << line;
       }
@@ -1111,9 +1153,9 @@ int main(int argc, char** argv) {
                   "%s,%s,%s,%zu,%zu,%zu,%s,%s,%d,%.6f,%.6f,%.1f,%.3f,%.1f,%d,%.9g,%.9g,%.2f,%.2f,"
                   "%.1f,%.3f,%.3f,%.3g,%s,%s\n",
                   label.c_str(), basename(opt.a).c_str(), basename(opt.b).c_str(), a.num_faces(),
-                  b.num_faces(), n, opt.morton ? "morton" : "native", r.engine.c_str(), r.threads,
-                  r.build, r.query.wall, r.qps, r.query.share, per_cpu(r), opt.repeats, r.mean,
-                  r.max, r.bytes_per_face, r.struct_mib, peak, meshdev_qps(r.threads) / r.qps,
+                  b.num_faces(), n, opt.order.c_str(), r.engine.c_str(), r.threads, r.build,
+                  r.query.wall, r.qps, r.query.share, per_cpu(r), opt.repeats, r.mean, r.max,
+                  r.bytes_per_face, r.struct_mib, peak, meshdev_qps(r.threads) / r.qps,
                   meshdev_per_cpu(r.threads) / per_cpu(r), mean_diff,
                   load_start.substr(0, load_start.find(' ')).c_str(),
                   load_end.substr(0, load_end.find(' ')).c_str());
