@@ -20,7 +20,7 @@
 //                           [--embree-float] [--rounds R [--rounds-csv FILE]] [--csv FILE]
 //                           [--label NAME] [--ab R [--ab-chunk C] [--ab-build]] [--check REL]
 // --order: the order every engine gets the samples in (sorted outside the timing): morton (the
-// default, Embree's best: the research note's setup), hilbert (a Hilbert curve on the same grid;
+// default: the research note's setup for Embree), hilbert (a Hilbert curve on the same grid;
 // meshdev puts each chunk of 1,024 back in Morton order, as it does any order) or native (the
 // sampler's: face by face, the faces along a Morton curve of their centroids).
 // --check REL: the agreement as a gate: the process exits 1 (after its CSV rows are written) if
