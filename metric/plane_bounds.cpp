@@ -14,12 +14,36 @@ namespace {
 
 using simd::F4;
 
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+// The runner-up of bounds whose lanes kept their two smallest (least <= second, lane by lane):
+// the smallest of the other lanes' least and of the second of the first lane whose least is
+// `smallest` (so two equal smallest bounds give smallest). O(1).
+float runner_up_of(F4 least, F4 second, float smallest) {
+  float l[4], s[4];
+  simd::store(l, least);
+  simd::store(s, second);
+  bool taken = false;
+  float r = kInf;
+  for (int k = 0; k < 4; ++k) {
+    float v = l[k];
+    if (!taken && v == smallest) {
+      v = s[k];
+      taken = true;
+    }
+    r = v < r ? v : r;
+  }
+  return r;
+}
+
 // The baseline kernels: four lanes (SSE2 on x86-64, plain C++ elsewhere), multiply then add.
-std::size_t bounds_baseline(const float* rows, std::size_t stride, std::size_t count,
+// Each lane keeps its two smallest bounds (second = min(second, max(least, b)) before least =
+// min(least, b)) for the runner-up.
+LeastBounds bounds_baseline(const float* rows, std::size_t stride, std::size_t count,
                             const float q[3], float* bound) {
   const F4 px = F4::splat(q[0]), py = F4::splat(q[1]), pz = F4::splat(q[2]);
   const F4 zero = F4::splat(0.0f);
-  F4 least = F4::splat(std::numeric_limits<float>::infinity());
+  F4 least = F4::splat(kInf), second = least;
   const std::size_t lanes = (count + 3) & ~std::size_t{3};
   for (std::size_t i = 0; i < lanes; i += 4) {
     auto plane = [&](int r) {  // row r..r+2: a unit normal, r+3: its offset
@@ -30,6 +54,7 @@ std::size_t bounds_baseline(const float* rows, std::size_t stride, std::size_t c
     const F4 h = plane(kNx);
     const F4 o = max(max(max(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
     const F4 b2 = max(h * h + o * o, zero);  // NaN -> 0 (max returns its second operand)
+    second = min(second, max(least, b2));
     least = min(b2, least);
     simd::store(bound + i, b2);
   }
@@ -37,15 +62,16 @@ std::size_t bounds_baseline(const float* rows, std::size_t stride, std::size_t c
   simd::store(each, least);
   float smallest = each[0];
   for (int k = 1; k < 4; ++k) smallest = each[k] < smallest ? each[k] : smallest;
+  const float runner_up = runner_up_of(least, second, smallest);
   for (std::size_t i = 0; i < lanes; i += 4) {
     const int equal = simd::equal_mask(F4::load(bound + i), F4::splat(smallest));
     if (equal != 0) {
       const std::size_t first =
           i + static_cast<std::size_t>(__builtin_ctz(static_cast<unsigned>(equal)));
-      return first < count ? first : 0;
+      return {first < count ? first : 0, runner_up};
     }
   }
-  return 0;
+  return {0, runner_up};
 }
 
 std::size_t survivors_baseline(const float* bound, std::size_t count, float cutoff,
@@ -66,11 +92,11 @@ std::size_t survivors_baseline(const float* bound, std::size_t count, float cuto
 }
 
 // bounds_baseline's arithmetic on each block's own rows, four lanes (one block) at a time.
-std::size_t block_bounds_baseline(const BlockPlanes* const* blocks, std::size_t count,
+LeastBounds block_bounds_baseline(const BlockPlanes* const* blocks, std::size_t count,
                                   const float q[3], float* bound) {
   const F4 px = F4::splat(q[0]), py = F4::splat(q[1]), pz = F4::splat(q[2]);
   const F4 zero = F4::splat(0.0f);
-  F4 least = F4::splat(std::numeric_limits<float>::infinity());
+  F4 least = F4::splat(kInf), second = least;
   for (std::size_t j = 0; j < count; ++j) {
     const BlockPlanes& b = *blocks[j];
     auto plane = [&](int r) {  // row r..r+2: a unit normal, r+3: its offset
@@ -80,6 +106,7 @@ std::size_t block_bounds_baseline(const BlockPlanes* const* blocks, std::size_t 
     const F4 h = plane(kNx);
     const F4 o = max(max(max(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
     const F4 b2 = max(h * h + o * o, zero);  // NaN -> 0 (max returns its second operand)
+    second = min(second, max(least, b2));
     least = min(b2, least);
     simd::store(bound + 4 * j, b2);
   }
@@ -87,9 +114,10 @@ std::size_t block_bounds_baseline(const BlockPlanes* const* blocks, std::size_t 
   simd::store(each, least);
   float smallest = each[0];
   for (int k = 1; k < 4; ++k) smallest = each[k] < smallest ? each[k] : smallest;
+  const float runner_up = runner_up_of(least, second, smallest);
   for (std::size_t i = 0; i < 4 * count; ++i)
-    if (bound[i] == smallest) return i;
-  return 0;
+    if (bound[i] == smallest) return {i, runner_up};
+  return {0, runner_up};
 }
 
 // Lane by lane, in double: the twin of the SIMD variants.

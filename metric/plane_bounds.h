@@ -37,14 +37,23 @@ struct alignas(16) BlockPlanes {  // aligned: the baseline kernels load its rows
   float max_offset[4];
 };
 
+// The smallest of a set of bounds and the next: `first` the index of the smallest (the first of
+// equal ones; 0 if all are +inf), `runner_up` the smallest bound at any other index (+inf if
+// there is none). A caller whose cutoff lies below runner_up knows that no candidate but `first`
+// survives it, without a scan.
+struct LeastBounds {
+  std::size_t first = 0;
+  float runner_up = 0.0f;
+};
+
 // The kernels of one instruction set.
 struct PlaneKernels {
   // bound[i] = max(h^2 + max(out_0, out_1, out_2, 0)^2, 0), the square of a lower bound on the
   // distance from q to candidate i (all in the float frame), for i < count rounded up to the
   // kernel's width (padding lanes: +inf); a NaN bound is stored as 0 (never culled). Returns the
-  // index of the smallest bound (the first of equal ones; 0 if all are +inf).
+  // smallest bound's index and the runner-up among i < count (LeastBounds).
   // Preconditions: stride a multiple of kPlaneLanes, stride >= count > 0; q finite. O(count).
-  std::size_t (*bounds)(const float* rows, std::size_t stride, std::size_t count, const float q[3],
+  LeastBounds (*bounds)(const float* rows, std::size_t stride, std::size_t count, const float q[3],
                         float* bound);
   // Writes to `out` the indices i < count, i != skip, with bound[i] <= cutoff, in increasing
   // order, and returns how many. bound: as written by `bounds` of the same kernels. O(count).
@@ -52,11 +61,11 @@ struct PlaneKernels {
                            std::uint32_t* out);
   // bound[4 j + lane] for the four lanes of *blocks[j], j < count: the bound of `bounds` above,
   // read from each block's own rows (a packet's blocks, no per-packet rows), bit for bit what
-  // `bounds` of the same kernels gives for the same coefficients. Returns the index 4 j + lane
-  // of the smallest (the first of equal ones; 0 if all are +inf). `bound` must have room for
-  // 4 count rounded up to kPlaneLanes floats (`survivors` reads that far).
+  // `bounds` of the same kernels gives for the same coefficients. Returns the smallest's index
+  // 4 j + lane and the runner-up among the 4 count bounds (LeastBounds). `bound` must have room
+  // for 4 count rounded up to kPlaneLanes floats (`survivors` reads that far).
   // Preconditions: count > 0; q finite. O(count).
-  std::size_t (*block_bounds)(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
+  LeastBounds (*block_bounds)(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
                               float* bound);
   // The planes of the four triangles whose corners are corner[corner][axis][lane] (float frame):
   // the normal n = ab x ac made unit, d = n.a, and per edge e (a->b, b->c, c->a) the unit
@@ -86,7 +95,7 @@ extern const PlaneKernels kPlaneKernelsAvx512;
 // The AVX2 + FMA block planes and block bounds, which the AVX-512 kernels share (every AVX-512F
 // CPU has both).
 void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out);
-std::size_t block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
+LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
                               float* bound);
 }  // namespace detail
 

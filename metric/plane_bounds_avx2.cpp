@@ -9,11 +9,33 @@
 namespace meshdev {
 namespace {
 
-std::size_t bounds_avx2(const float* rows, std::size_t stride, std::size_t count, const float q[3],
+// The smallest of the eight lanes, in every lane.
+__m256 broadcast_min(__m256 v) {
+  __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+  return _mm256_broadcastss_ps(m);
+}
+
+// The runner-up of bounds whose lanes kept their two smallest (least <= second, lane by lane):
+// the first lane whose least is `smallest` gives its second instead, then the least of all
+// lanes (so two equal smallest bounds give smallest).
+float runner_up_of(__m256 least, __m256 second, __m256 smallest) {
+  const unsigned equal =
+      static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(least, smallest, _CMP_EQ_OQ)));
+  const int lane = equal != 0 ? __builtin_ctz(equal) : -1;  // -1: none (no lane given up)
+  const __m256 pick = _mm256_castsi256_ps(
+      _mm256_cmpeq_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(lane)));
+  return _mm256_cvtss_f32(broadcast_min(_mm256_blendv_ps(least, second, pick)));
+}
+
+// Each lane keeps its two smallest bounds (second = min(second, max(least, b)) before least =
+// min(least, b)) for the runner-up.
+LeastBounds bounds_avx2(const float* rows, std::size_t stride, std::size_t count, const float q[3],
                         float* bound) {
   const __m256 px = _mm256_set1_ps(q[0]), py = _mm256_set1_ps(q[1]), pz = _mm256_set1_ps(q[2]);
   const __m256 zero = _mm256_setzero_ps();
-  __m256 least = _mm256_set1_ps(__builtin_inff());
+  __m256 least = _mm256_set1_ps(__builtin_inff()), second = least;
   const std::size_t lanes = (count + 7) & ~std::size_t{7};
   for (std::size_t i = 0; i < lanes; i += 8) {
     auto plane = [&](int r) {  // (n.p - d) with one rounding per coordinate
@@ -27,23 +49,22 @@ std::size_t bounds_avx2(const float* rows, std::size_t stride, std::size_t count
         _mm256_max_ps(_mm256_max_ps(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
     // NaN -> 0: max returns its second operand when either is NaN.
     const __m256 b2 = _mm256_max_ps(_mm256_fmadd_ps(h, h, _mm256_mul_ps(o, o)), zero);
+    second = _mm256_min_ps(second, _mm256_max_ps(least, b2));
     least = _mm256_min_ps(b2, least);
     _mm256_storeu_ps(bound + i, b2);
   }
-  __m128 m = _mm_min_ps(_mm256_castps256_ps128(least), _mm256_extractf128_ps(least, 1));
-  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
-  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
-  const __m256 smallest = _mm256_broadcastss_ps(m);
+  const __m256 smallest = broadcast_min(least);
+  const float runner_up = runner_up_of(least, second, smallest);
   for (std::size_t i = 0; i < lanes; i += 8) {
     const int equal =
         _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(bound + i), smallest, _CMP_EQ_OQ));
     if (equal != 0) {
       const std::size_t first =
           i + static_cast<unsigned>(__builtin_ctz(static_cast<unsigned>(equal)));
-      return first < count ? first : 0;
+      return {first < count ? first : 0, runner_up};
     }
   }
-  return 0;
+  return {0, runner_up};
 }
 
 std::size_t survivors_avx2(const float* bound, std::size_t count, float cutoff, std::size_t skip,
@@ -74,14 +95,16 @@ inline __m256 pair_row(const BlockPlanes& a, const BlockPlanes& b, int r) {
 
 namespace detail {
 
-std::size_t block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
+LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
                               float* bound) {
   const __m256 px = _mm256_set1_ps(q[0]), py = _mm256_set1_ps(q[1]), pz = _mm256_set1_ps(q[2]);
   const __m256 zero = _mm256_setzero_ps();
-  __m256 least = _mm256_set1_ps(__builtin_inff());
+  const __m256 inf = _mm256_set1_ps(__builtin_inff());
+  __m256 least = inf, second = inf;
   for (std::size_t j = 0; j < count; j += 2) {
+    const bool pair = j + 1 < count;
     const BlockPlanes& a = *blocks[j];
-    const BlockPlanes& b = j + 1 < count ? *blocks[j + 1] : a;
+    const BlockPlanes& b = pair ? *blocks[j + 1] : a;
     auto plane = [&](int r) {  // (n.p - d) with one rounding per coordinate
       const __m256 t = _mm256_fmsub_ps(pair_row(a, b, r), px, pair_row(a, b, r + 3));
       return _mm256_fmadd_ps(pair_row(a, b, r + 2), pz,
@@ -92,23 +115,23 @@ std::size_t block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t coun
         _mm256_max_ps(_mm256_max_ps(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
     // NaN -> 0: max returns its second operand when either is NaN.
     const __m256 b2 = _mm256_max_ps(_mm256_fmadd_ps(h, h, _mm256_mul_ps(o, o)), zero);
-    least = _mm256_min_ps(b2, least);
     _mm256_storeu_ps(bound + 4 * j, b2);  // an odd last block: its copy in the upper half
+    const __m256 kept = pair ? b2 : _mm256_blend_ps(b2, inf, 0xf0);  // ... not counted twice
+    second = _mm256_min_ps(second, _mm256_max_ps(least, kept));
+    least = _mm256_min_ps(kept, least);
   }
-  __m128 m = _mm_min_ps(_mm256_castps256_ps128(least), _mm256_extractf128_ps(least, 1));
-  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
-  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
-  const __m256 smallest = _mm256_broadcastss_ps(m);
+  const __m256 smallest = broadcast_min(least);
+  const float runner_up = runner_up_of(least, second, smallest);
   for (std::size_t i = 0; i < 4 * count; i += 8) {
     const int equal =
         _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(bound + i), smallest, _CMP_EQ_OQ));
     if (equal != 0) {
       const std::size_t first =
           i + static_cast<unsigned>(__builtin_ctz(static_cast<unsigned>(equal)));
-      return first < 4 * count ? first : 0;
+      return {first < 4 * count ? first : 0, runner_up};
     }
   }
-  return 0;
+  return {0, runner_up};
 }
 
 }  // namespace detail

@@ -9,11 +9,12 @@
 namespace meshdev {
 namespace {
 
-std::size_t bounds_avx512(const float* rows, std::size_t stride, std::size_t count,
+// Each lane keeps its two smallest bounds for the runner-up, as bounds_avx2 does.
+LeastBounds bounds_avx512(const float* rows, std::size_t stride, std::size_t count,
                           const float q[3], float* bound) {
   const __m512 px = _mm512_set1_ps(q[0]), py = _mm512_set1_ps(q[1]), pz = _mm512_set1_ps(q[2]);
   const __m512 zero = _mm512_setzero_ps();
-  __m512 least = _mm512_set1_ps(__builtin_inff());
+  __m512 least = _mm512_set1_ps(__builtin_inff()), second = least;
   const std::size_t lanes = (count + 15) & ~std::size_t{15};
   for (std::size_t i = 0; i < lanes; i += 16) {
     auto plane = [&](int r) {  // (n.p - d) with one rounding per coordinate
@@ -27,18 +28,23 @@ std::size_t bounds_avx512(const float* rows, std::size_t stride, std::size_t cou
         _mm512_max_ps(_mm512_max_ps(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
     // NaN -> 0: max returns its second operand when either is NaN.
     const __m512 b2 = _mm512_max_ps(_mm512_fmadd_ps(h, h, _mm512_mul_ps(o, o)), zero);
+    second = _mm512_min_ps(second, _mm512_max_ps(least, b2));
     least = _mm512_min_ps(b2, least);
     _mm512_storeu_ps(bound + i, b2);
   }
   const __m512 smallest = _mm512_set1_ps(_mm512_reduce_min_ps(least));
+  // The first lane holding the smallest gives its second instead (bounds_avx2's runner_up_of).
+  const unsigned at = _mm512_cmp_ps_mask(least, smallest, _CMP_EQ_OQ);
+  const __mmask16 pick = static_cast<__mmask16>(at & (~at + 1u));
+  const float runner_up = _mm512_reduce_min_ps(_mm512_mask_blend_ps(pick, least, second));
   for (std::size_t i = 0; i < lanes; i += 16) {
     const unsigned equal = _mm512_cmp_ps_mask(_mm512_loadu_ps(bound + i), smallest, _CMP_EQ_OQ);
     if (equal != 0) {
       const std::size_t first = i + static_cast<unsigned>(__builtin_ctz(equal));
-      return first < count ? first : 0;
+      return {first < count ? first : 0, runner_up};
     }
   }
-  return 0;
+  return {0, runner_up};
 }
 
 std::size_t survivors_avx512(const float* bound, std::size_t count, float cutoff, std::size_t skip,

@@ -1568,10 +1568,12 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     auto cutoff_of = [&](double r) {  // r: a reach
       return round_up_to_float((r + margin) * (r + margin) * (1.0 + 1e-5));
     };
-    // All bounds, and the smallest (NaN bounds become 0: evaluated first, never culled).
-    const std::size_t first_idx =
+    // All bounds, the smallest and the runner-up (NaN bounds become 0: evaluated first, never
+    // culled).
+    const LeastBounds least =
         dense ? kernels_->bounds(scratch.rows.data(), stride, candidates, qf, scratch.bound)
               : kernels_->block_bounds(which_rows, count / 4, qf, scratch.bound);
+    const std::size_t first_idx = least.first;
 
     // The face of smallest bound first: its exact distance gives the tie limit, usually final.
     ties.clear();
@@ -1594,8 +1596,13 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     double limit = eval_.limit(best), limit_sq = limit * limit;  // = eval_.limit_sq(best_sq)
     ties.push_back(first);
     float cutoff = cutoff_of(std::min(initial_reach[k], reach(k, limit)));
-    std::size_t left =
-        kernels_->survivors(scratch.bound, count, cutoff, first_idx, scratch.survivors);
+    // Most queries have no candidate but the first within the cutoff, which the runner-up tells
+    // without the scan for survivors and its branches on the bounds (chunk-interleaved, 1 and 2
+    // threads: torus100k -> 1m +1.6-1.8 %, torus1m -> 100k +2.0-2.4 %, torus100k -> 10k
+    // +1.5-2.2 %, armadillo +0.9-1.3 %, buildings -0.6 to +0.1 %; docs/performance-log.md §3).
+    std::size_t left = least.runner_up > cutoff ? 0
+                                                : kernels_->survivors(scratch.bound, count, cutoff,
+                                                                      first_idx, scratch.survivors);
     while (left > 0) {
       std::size_t pick = 0;
       for (std::size_t s = 1; s < left; ++s)

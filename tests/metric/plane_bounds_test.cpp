@@ -78,6 +78,14 @@ Candidates make_candidates(std::mt19937_64& rng, std::size_t count) {
   return c;
 }
 
+// The brute-force runner-up: the smallest of bound[0 .. count) but at `first` (+inf if none).
+float other_least(const float* bound, std::size_t count, std::size_t first) {
+  float r = kInf;
+  for (std::size_t i = 0; i < count; ++i)
+    if (i != first) r = std::min(r, bound[i]);
+  return r;
+}
+
 // The brute-force twin: the same formula in double from the same float coefficients.
 double twin_bound(const Candidates& c, std::size_t i, const float q[3]) {
   auto plane = [&](int row) {
@@ -111,7 +119,8 @@ TEST(PlaneBounds, EveryKernelEqualsTheDoubleTwinWithinTheMarginAndBoundsTheDista
         const float q[3] = {static_cast<float>(u(rng)), static_cast<float>(u(rng)),
                             static_cast<float>(u(rng))};
         const Vec3 p{q[0], q[1], q[2]};
-        const std::size_t first = k.bounds(c.rows.data(), c.stride, count, q, bound.data());
+        const LeastBounds least_bounds = k.bounds(c.rows.data(), c.stride, count, q, bound.data());
+        const std::size_t first = least_bounds.first;
         // The caller's margin (triangle_bvh.cpp, find_packet): 16 u (|q|_1 + max offset + 2).
         const double margin =
             16 * kUnit * (std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + c.max_offset + 2);
@@ -126,6 +135,9 @@ TEST(PlaneBounds, EveryKernelEqualsTheDoubleTwinWithinTheMarginAndBoundsTheDista
           if (bound[i] < bound[least]) least = i;
         }
         EXPECT_EQ(first, least);  // the first of the smallest
+        // The runner-up: the least of the others (candidates 3 and 10 both have bound 0: a tie
+        // gives the smallest itself).
+        EXPECT_EQ(least_bounds.runner_up, other_least(bound.data(), count, first));
         // Survivors: the brute-force filter, in index order, without `skip`.
         const float cutoff = bound[(first + 1) % count] * 1.5f;
         const std::size_t n = k.survivors(bound.data(), count, cutoff, first, kept.data());
@@ -147,14 +159,18 @@ TEST(PlaneBounds, NanBoundsBecomeZeroAndPaddingIsNeverTaken) {
     c.rows[kNx * c.stride + 2] = std::numeric_limits<float>::quiet_NaN();
     std::vector<float> bound(c.stride);
     const float q[3] = {0.5f, -0.25f, 2.0f};
-    EXPECT_EQ(k.bounds(c.rows.data(), c.stride, c.count, q, bound.data()), 2u);
+    const LeastBounds with_nan = k.bounds(c.rows.data(), c.stride, c.count, q, bound.data());
+    EXPECT_EQ(with_nan.first, 2u);
     EXPECT_EQ(bound[2], 0.0f);
+    EXPECT_EQ(with_nan.runner_up, other_least(bound.data(), c.count, 2));
     // Every real bound +inf: the first candidate, never a padding lane.
     for (std::size_t i = 0; i < c.count; ++i) c.rows[kD * c.stride + i] = -kInf;
     for (int r = 0; r < kPlaneRows; ++r)
       if (r != kD)
         for (std::size_t i = 0; i < c.count; ++i) c.rows[r * c.stride + i] = 0.0f;
-    EXPECT_EQ(k.bounds(c.rows.data(), c.stride, c.count, q, bound.data()), 0u);
+    const LeastBounds all_inf = k.bounds(c.rows.data(), c.stride, c.count, q, bound.data());
+    EXPECT_EQ(all_inf.first, 0u);
+    EXPECT_EQ(all_inf.runner_up, kInf);
     std::vector<std::uint32_t> kept(c.stride);
     EXPECT_EQ(k.survivors(bound.data(), c.count, kInf, 99, kept.data()), c.count);
   }
@@ -187,9 +203,12 @@ TEST(PlaneBounds, BlockBoundsEqualTheRowBoundsBitForBit) {
         for (std::size_t b = 0; b < blocks; ++b) which[b] = static_cast<std::uint32_t>(b);
         std::shuffle(which.begin(), which.end(), rng);
         which.resize(1 + rng() % blocks);
+        if (trial % 4 == 0) which.push_back(which.front());  // a block twice: its bounds tie
         std::vector<const BlockPlanes*> chosen;
         for (std::uint32_t b : which) chosen.push_back(&planes[b]);
-        const std::size_t first = k.block_bounds(chosen.data(), chosen.size(), q, by_blocks.data());
+        const LeastBounds least_bounds =
+            k.block_bounds(chosen.data(), chosen.size(), q, by_blocks.data());
+        const std::size_t first = least_bounds.first;
         std::size_t least = 0;
         for (std::size_t j = 0; j < which.size(); ++j)
           for (std::size_t lane = 0; lane < 4; ++lane) {
@@ -200,6 +219,8 @@ TEST(PlaneBounds, BlockBoundsEqualTheRowBoundsBitForBit) {
             if (got < by_blocks[least]) least = 4 * j + lane;
           }
         EXPECT_EQ(first, least);  // the first of the smallest
+        // The runner-up over the chosen blocks' lanes only (not an odd last block's copy).
+        EXPECT_EQ(least_bounds.runner_up, other_least(by_blocks.data(), 4 * which.size(), first));
       }
     }
   }
