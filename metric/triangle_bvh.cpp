@@ -1208,9 +1208,15 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
       if (!to_frame(points[j], scratch.q[k], scratch.qf[k], scratch.slack[k])) break;
       float nlo[3], nhi[3];
       double diag2 = 0.0;
+      // The box grows without a branch on the data: std::min and std::max compiled to a compare
+      // and a branch here, and whether a query extends the box varies from query to query
+      // (callgrind's branch model: 0.69 mispredictions per sample on torus100k -> 1m).
+      // Chunk-interleaved, 1 and 2 threads: +1.2-2.8 % on the torus pairs, armadillo +2.4 %,
+      // buildings +1.8-3.6 % (docs/performance-log.md §3).
       for (int a = 0; a < 3; ++a) {
-        nlo[a] = k == 0 ? scratch.qf[k][a] : std::min(lo[a], scratch.qf[k][a]);
-        nhi[a] = k == 0 ? scratch.qf[k][a] : std::max(hi[a], scratch.qf[k][a]);
+        const float q = scratch.qf[k][a];
+        nlo[a] = k == 0 ? q : simd::min1(q, lo[a]);  // = std::min(lo[a], q), bit for bit
+        nhi[a] = k == 0 ? q : simd::max1(q, hi[a]);
         diag2 += (static_cast<double>(nhi[a]) - nlo[a]) * (static_cast<double>(nhi[a]) - nlo[a]);
       }
       if (diag2 > max_diag2 || (k >= kFullPacket && diag2 > full_diag2)) break;
