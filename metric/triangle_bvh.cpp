@@ -1211,9 +1211,8 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
       // The box grows without a branch on the data: GCC 12 compiled std::max here to a compare
       // and a branch (std::min beside it to minss), and whether a query extends the box varies
       // from query to query (callgrind's branch model: 0.69 mispredictions per sample on
-      // torus100k -> 1m).
-      // Chunk-interleaved, 1 and 2 threads: +1.2-2.8 % on the torus pairs, armadillo +2.4 %,
-      // buildings +1.8-3.6 % (docs/performance-log.md §3).
+      // torus100k -> 1m). Chunk-interleaved, 1 and 2 threads: +1.2-2.8 % on the torus pairs,
+      // armadillo +2.4 %, buildings +1.8-3.6 % (docs/performance-log.md §3).
       for (int a = 0; a < 3; ++a) {
         const float q = scratch.qf[k][a];
         nlo[a] = k == 0 ? q : simd::min1(q, lo[a]);  // = std::min(lo[a], q), bit for bit
