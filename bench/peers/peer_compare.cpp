@@ -59,6 +59,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <climits>
 #include <cmath>
@@ -77,6 +78,7 @@
 #include "metric/ab_variant.h"
 #include "metric/attribute_deviation.h"
 #include "metric/attributes.h"
+#include "metric/chunk_schedule.h"
 #include "metric/io/mesh_io.h"
 #include "metric/mesh.h"
 #include "metric/nearest_point.h"
@@ -399,42 +401,56 @@ struct EmbreeScene {
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 };
 
+// The peers' loops deal their samples to the team as meshdev's deviation loop deals its own
+// (metric/chunk_schedule.h): chunks of kPeerChunk, each thread a contiguous range of them, the
+// others' last chunks taken once its own are spent. Embree's times were the same as with
+// OpenMP's schedule(dynamic, 1024) (2 threads, best of 3, three alternations: torus100k -> 1m
+// 2.60-2.64 against 2.59-2.62 M/s, torus1m -> 100k 2.58-2.66 against 2.54-2.66, torus100k -> 10k
+// 3.28 against 3.24-3.26; docs/performance-log.md §3).
+constexpr std::int64_t kPeerChunk = 1024;
+std::int64_t peer_chunks(std::int64_t n) {
+  return (n + kPeerChunk - 1) / kPeerChunk;
+}
+
 template <class T>
 void embree_queries(RTCScene scene, const T* vertices, const std::uint32_t* tris,
                     const std::vector<float>& attr, const std::vector<float>& points,
                     const std::vector<double>& points_d, bool hint, int threads, PeerOut& out) {
   const auto n = static_cast<std::int64_t>(points.size() / 3);
+  std::unique_ptr<meshdev::ChunkSchedule> schedule;
 #pragma omp parallel num_threads(threads)
   {
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     std::uint32_t previous = std::numeric_limits<std::uint32_t>::max();
-#pragma omp for schedule(dynamic, 1024)
-    for (std::int64_t i = 0; i < n; ++i) {
-      RTCPointQuery query;
-      query.x = points[3 * i], query.y = points[3 * i + 1], query.z = points[3 * i + 2];
-      query.time = 0;
-      query.radius = std::numeric_limits<float>::infinity();
-      EmbreeQuery<T> q{vertices,
-                       tris,
-                       {static_cast<T>(points_d[3 * i]), static_cast<T>(points_d[3 * i + 1]),
-                        static_cast<T>(points_d[3 * i + 2])}};
-      if (hint && previous != std::numeric_limits<std::uint32_t>::max()) {
-        // The coherence bound meshdev uses: the previous sample's triangle gives an upper bound.
-        embree_eval(q, q.p, previous);
-        query.radius = std::nextafter(static_cast<float>(std::sqrt(q.best)),
-                                      std::numeric_limits<float>::infinity());
+#pragma omp single
+    schedule = std::make_unique<meshdev::ChunkSchedule>(peer_chunks(n), omp_get_num_threads());
+    for (std::int64_t chunk; (chunk = schedule->next(omp_get_thread_num())) >= 0;)
+      for (std::int64_t i = chunk * kPeerChunk; i < std::min(n, (chunk + 1) * kPeerChunk); ++i) {
+        RTCPointQuery query;
+        query.x = points[3 * i], query.y = points[3 * i + 1], query.z = points[3 * i + 2];
+        query.time = 0;
+        query.radius = std::numeric_limits<float>::infinity();
+        EmbreeQuery<T> q{vertices,
+                         tris,
+                         {static_cast<T>(points_d[3 * i]), static_cast<T>(points_d[3 * i + 1]),
+                          static_cast<T>(points_d[3 * i + 2])}};
+        if (hint && previous != std::numeric_limits<std::uint32_t>::max()) {
+          // The coherence bound meshdev uses: the previous sample's triangle gives an upper bound.
+          embree_eval(q, q.p, previous);
+          query.radius = std::nextafter(static_cast<float>(std::sqrt(q.best)),
+                                        std::numeric_limits<float>::infinity());
+        }
+        rtcPointQuery(scene, &query, &context, embree_callback<T>, &q);
+        previous = q.face;
+        const std::uint32_t* t = tris + 3 * static_cast<std::size_t>(q.face);
+        out.distance[i] = static_cast<float>(std::sqrt(q.best));
+        out.face[i] = q.face;
+        for (int k = 0; k < 3; ++k)
+          out.attribute[3 * i + k] =
+              static_cast<float>(q.bary[0] * attr[3 * t[0] + k] + q.bary[1] * attr[3 * t[1] + k] +
+                                 q.bary[2] * attr[3 * t[2] + k]);
       }
-      rtcPointQuery(scene, &query, &context, embree_callback<T>, &q);
-      previous = q.face;
-      const std::uint32_t* t = tris + 3 * static_cast<std::size_t>(q.face);
-      out.distance[i] = static_cast<float>(std::sqrt(q.best));
-      out.face[i] = q.face;
-      for (int k = 0; k < 3; ++k)
-        out.attribute[3 * i + k] =
-            static_cast<float>(q.bary[0] * attr[3 * t[0] + k] + q.bary[1] * attr[3 * t[1] + k] +
-                               q.bary[2] * attr[3 * t[2] + k]);
-    }
   }
 }
 
@@ -450,26 +466,32 @@ void cgal_queries(const CgalTree& tree, const CgalTriangles& tris, const meshdev
                   const std::vector<double>& attr, const std::vector<double>& points, int threads,
                   PeerOut& out) {
   const auto n = static_cast<std::int64_t>(points.size() / 3);
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1024)
-  for (std::int64_t i = 0; i < n; ++i) {
-    const K::Point_3 p(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
-    const auto hit = tree.closest_point_and_primitive(p);
-    const auto f = static_cast<std::uint32_t>(hit.second - tris.begin());
-    // Barycentrics of the closest point on face f (projection; it lies on the triangle).
-    const auto& t = b.faces[f];
-    const Vec3 a0 = b.positions[t[0]], e1 = b.positions[t[1]] - a0, e2 = b.positions[t[2]] - a0;
-    const Vec3 r = Vec3{hit.first.x(), hit.first.y(), hit.first.z()} - a0;
-    const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
-    const double d20 = dot(r, e1), d21 = dot(r, e2);
-    const double den = d00 * d11 - d01 * d01;
-    double v = 0, w = 0;
-    if (den > 0) v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
-    const double u = 1 - v - w;
-    out.distance[i] = static_cast<float>(std::sqrt(CGAL::squared_distance(p, hit.first)));
-    out.face[i] = f;
-    for (int k = 0; k < 3; ++k)
-      out.attribute[3 * i + k] = static_cast<float>(
-          u * attr[3 * t[0] + k] + v * attr[3 * t[1] + k] + w * attr[3 * t[2] + k]);
+  std::unique_ptr<meshdev::ChunkSchedule> schedule;
+#pragma omp parallel num_threads(threads)
+  {
+#pragma omp single
+    schedule = std::make_unique<meshdev::ChunkSchedule>(peer_chunks(n), omp_get_num_threads());
+    for (std::int64_t chunk; (chunk = schedule->next(omp_get_thread_num())) >= 0;)
+      for (std::int64_t i = chunk * kPeerChunk; i < std::min(n, (chunk + 1) * kPeerChunk); ++i) {
+        const K::Point_3 p(points[3 * i], points[3 * i + 1], points[3 * i + 2]);
+        const auto hit = tree.closest_point_and_primitive(p);
+        const auto f = static_cast<std::uint32_t>(hit.second - tris.begin());
+        // Barycentrics of the closest point on face f (projection; it lies on the triangle).
+        const auto& t = b.faces[f];
+        const Vec3 a0 = b.positions[t[0]], e1 = b.positions[t[1]] - a0, e2 = b.positions[t[2]] - a0;
+        const Vec3 r = Vec3{hit.first.x(), hit.first.y(), hit.first.z()} - a0;
+        const double d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2);
+        const double d20 = dot(r, e1), d21 = dot(r, e2);
+        const double den = d00 * d11 - d01 * d01;
+        double v = 0, w = 0;
+        if (den > 0) v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+        const double u = 1 - v - w;
+        out.distance[i] = static_cast<float>(std::sqrt(CGAL::squared_distance(p, hit.first)));
+        out.face[i] = f;
+        for (int k = 0; k < 3; ++k)
+          out.attribute[3 * i + k] = static_cast<float>(
+              u * attr[3 * t[0] + k] + v * attr[3 * t[1] + k] + w * attr[3 * t[2] + k]);
+      }
   }
 }
 
