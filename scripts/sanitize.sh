@@ -119,12 +119,13 @@ tsan() {
   [[ $libs == *libomp.so* ]] || { echo "metric_tests is not linked with LLVM's libomp"; return 1; }
   # The metric's OpenMP loops (queries, statistics, the BVH's task-parallel build and its Morton
   # sort, the Monte Carlo samples made as they are queried, the samplers' face and vertex orders,
-  # the checks, summaries and vertex normals on the team), the readers' chunked parses and the
-  # std::thread workers of `meshdev sweep --jobs` (SweepTest.JobsInParallelGiveTheSameRows).
+  # the checks, summaries and vertex normals on the team), the deviation loop's chunk schedule
+  # under std::threads (ChunkSchedule.*), the readers' chunked parses and the std::thread workers
+  # of `meshdev sweep --jobs` (SweepTest.JobsInParallelGiveTheSameRows).
   OMP_TOOL_LIBRARIES="$archer" OMP_NUM_THREADS=2 \
     TSAN_OPTIONS="halt_on_error=1:ignore_noninstrumented_modules=1" \
     "$build/tests/metric/metric_tests" \
-    --gtest_filter='Compare*:NastyMeshes*:Mesh.*:VertexNormals.*:NearestPoint.BvhIsTheSameForAnyBuildThreadCount:NearestPoint.BvhSplitsAlongAMortonCurve*:AttributeDeviation.MonteCarlo*:Sampling.FacesAndVerticesAreVisitedAlongAMortonCurve' \
+    --gtest_filter='Compare*:ChunkSchedule.*:NastyMeshes*:Mesh.*:VertexNormals.*:NearestPoint.BvhIsTheSameForAnyBuildThreadCount:NearestPoint.BvhSplitsAlongAMortonCurve*:AttributeDeviation.MonteCarlo*:Sampling.FacesAndVerticesAreVisitedAlongAMortonCurve' \
     --gtest_brief=1 || return 1
   OMP_TOOL_LIBRARIES="$archer" OMP_NUM_THREADS=2 \
     TSAN_OPTIONS="halt_on_error=1:ignore_noninstrumented_modules=1" \
