@@ -27,8 +27,6 @@ class ChunkSchedule {
   // compare-and-swap per chunk without contention). O(1), O(team) once the own range is spent.
   std::int64_t next(int thread);
 
-  int team() const { return team_; }
-
  private:
   // The untaken chunks [front, back) of one thread's range, as front << 32 | back, alone on its
   // cache line (the owner takes from the front, the others from the back).
