@@ -1589,15 +1589,23 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       continue;
     }
     // Where samples are dense on B, consecutive queries mostly share that face: its triangle's
-    // setup is kept from the second query in a row that evaluates it first.
-    if (first_face != scratch.setup_face && first_face == scratch.seen_face) {
-      scratch.setup = eval_.setup(first_face);
-      scratch.setup_face = first_face;
+    // setup is kept from the second query in a row that evaluates it first. Sparse packets do
+    // without: there consecutive queries share their first face now and then, so the two
+    // branches on it went either way and a setup was rarely used a third time (chunk-interleaved,
+    // 1 and 2 threads: torus100k -> 1m +3.1-3.7 %, the other pairs within 0.5 %;
+    // docs/performance-log.md §3).
+    SurfaceHit first;
+    if (dense) {
+      if (first_face != scratch.setup_face && first_face == scratch.seen_face) {
+        scratch.setup = eval_.setup(first_face);
+        scratch.setup_face = first_face;
+      }
+      scratch.seen_face = first_face;
+      first = first_face == scratch.setup_face ? eval_.evaluate(p, first_face, scratch.setup, hint)
+                                               : eval_.evaluate(p, first_face, hint);
+    } else {
+      first = eval_.evaluate(p, first_face, hint);
     }
-    scratch.seen_face = first_face;
-    SurfaceHit first = first_face == scratch.setup_face
-                           ? eval_.evaluate(p, first_face, scratch.setup, hint)
-                           : eval_.evaluate(p, first_face, hint);
     double best_sq = first.sq_distance, best = std::sqrt(best_sq);
     double limit = eval_.limit(best), limit_sq = limit * limit;  // = eval_.limit_sq(best_sq)
     ties.push_back(first);
