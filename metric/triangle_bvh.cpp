@@ -1131,8 +1131,8 @@ struct TriangleBvh::PacketScratch {
   alignas(16) float block_hi[3][kMaxBlocks + 4];
   std::size_t misses = 0;  // queries of the last packet farther from B than its guess
   bool sparse = false;     // the last packet of faces was sparse (find_packet)
-  // The face the last packet query evaluated first, and the face whose triangle's setup is
-  // kept (both reset per batch).
+  // The face the last dense packet's query evaluated first, and the face whose triangle's setup
+  // is kept (both reset per batch; sparse packets neither read nor change them).
   std::uint32_t seen_face = kNoFace;
   std::uint32_t setup_face = kNoFace;
   TriangleSetup setup;
@@ -1592,7 +1592,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     // setup is kept from the second query in a row that evaluates it first. Sparse packets do
     // without: there consecutive queries share their first face now and then, so the two
     // branches on it went either way and a setup was rarely used a third time (chunk-interleaved,
-    // 1 and 2 threads: torus100k -> 1m +3.1-3.7 %, the other pairs within 0.5 %;
+    // 1 and 2 threads: torus100k -> 1m +3.1-3.7 %, the other pairs -0.5 to +1.2 %;
     // docs/performance-log.md §3).
     SurfaceHit first;
     if (dense) {
