@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 
 #include "metric/errors.h"
@@ -72,9 +73,29 @@ bool match_corners(const Vec3* source, const Vec3& a, const Vec3& b, const Vec3&
 
 }  // namespace
 
+namespace {
+
+// The tie tolerances as given, or InvalidInput: both finite and >= 0 (a NaN or a negative one
+// would leave queries with no tie at all, not even their nearest face).
+const TieOptions& checked(const TieOptions& ties) {
+  auto fine = [](double x) { return std::isfinite(x) && x >= 0.0; };
+  if (!fine(ties.relative) || !fine(ties.absolute_fraction)) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "tie tolerances must be finite and >= 0: relative %g, absolute_fraction %g",
+                  ties.relative, ties.absolute_fraction);
+    throw InvalidInput(text);
+  }
+  return ties;
+}
+
+}  // namespace
+
 FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres,
                              int threads)
-    : mesh(&m), box(corner_bounding_box(m, threads)), tie_relative(ties.relative) {
+    : mesh(&m),
+      box(corner_bounding_box(m, threads)),
+      tie_relative(std::max(checked(ties).relative, kMinTieRelative)) {
   const double diag = box.diagonal();
   tie_absolute = ties.absolute_fraction * diag;
   // Sample points far from the origin carry the rounding of their absolute coordinates (about

@@ -27,10 +27,19 @@ struct SurfaceHit {
 // distance d satisfies d <= d_min (1 + relative) + absolute, absolute = absolute_fraction x the
 // target's bounding-box diagonal. Rounding makes exactly-equal distances rare, so a tolerance is
 // needed; 1e-9 relative is far above double rounding (1e-16) and far below any real difference.
+// Both must be finite and >= 0 (the indexes throw InvalidInput otherwise); a relative tolerance
+// below kMinTieRelative, 0 included, is raised to it.
 struct TieOptions {
   double relative = 1e-9;            // relative to the minimum distance
   double absolute_fraction = 1e-12;  // of the target's bbox diagonal (covers d_min = 0)
 };
+
+// The least relative tie tolerance honoured. Below about 2.5 double rounding units the squared
+// tie limit of the minimum d, (d (1 + relative))^2 with each step rounded, can fall below the
+// rounded d^2 itself, and the nearest face would drop out of its own tie set (leaving a query
+// with no answer). From 1e-15 on it cannot: d (1 + 2e-15) squared is above d^2 by more than
+// those roundings.
+constexpr double kMinTieRelative = 1e-15;
 
 // What a query may know beyond its position.
 struct QueryHint {
@@ -139,7 +148,8 @@ struct FaceEvaluator {
   };
   std::vector<Sphere> spheres;
 
-  // threads: OpenMP threads for the passes over the mesh (0 = OpenMP's default).
+  // threads: OpenMP threads for the passes over the mesh (0 = OpenMP's default). Throws
+  // InvalidInput for tie tolerances that are negative or not finite (TieOptions).
   FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true,
                 int threads = 0);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;

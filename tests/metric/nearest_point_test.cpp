@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -367,9 +368,9 @@ QueryStream coherent_queries(const TriMesh& m, std::uint64_t seed, int runs, dou
 // find_batch must give every query exactly the oracle's answer (distance, ties, barycentrics,
 // features) whether it is answered in a packet or alone. Returns how many went through packets.
 std::size_t expect_batch_is_the_oracle(const TriMesh& m, const QueryStream& qs,
-                                       const std::string& what) {
-  const TriangleBvh bvh(m);
-  const NearestPointBrute brute(m);
+                                       const std::string& what, const TieOptions& ties = {}) {
+  const TriangleBvh bvh(m, ties);
+  const NearestPointBrute brute(m, ties);
   BatchHits batch;
   bvh.find_batch(qs.points.data(), qs.hints.data(), qs.points.size(), batch);
   EXPECT_EQ(batch.size(), qs.points.size());
@@ -848,6 +849,52 @@ TEST(NearestPoint, FindBatchWithoutHintsAndTheDefaultLoopAgreeWithFind) {
       expect_same({batch.ties_begin(i), batch.ties_begin(i) + batch.tie_count(i)}, tf);
     }
     EXPECT_EQ(batch.packet_queries > 0, index == &bvh) << index->name();
+  }
+}
+
+// Tie tolerances of 0 are raised to kMinTieRelative: with exactly 0, rounding put the squared
+// tie limit below the minimum's own squared distance for about a quarter of the queries around a
+// sphere, which then had no tie at all (and the batch read past its answers). Every query keeps
+// its nearest face, and the batch is still the oracle.
+TEST(NearestPoint, ZeroTieTolerancesKeepEveryQuerysNearestFace) {
+  const TriMesh sphere = test::icosphere(4);
+  TieOptions zero;
+  zero.relative = 0.0;
+  zero.absolute_fraction = 0.0;
+  for (double offset : {0.0, 1e-3, 0.3}) {
+    const QueryStream qs = coherent_queries(sphere, 23, 60, offset, false);
+    expect_batch_is_the_oracle(sphere, qs, "offset " + std::to_string(offset), zero);
+    if (HasFailure()) return;
+  }
+  const TriangleBvh bvh(sphere, zero);
+  const NearestPointBrute brute(sphere, zero);
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  std::vector<Vec3> points(4000);
+  for (Vec3& p : points) p = {u(rng), u(rng), u(rng)};
+  BatchHits batch;
+  ASSERT_EQ(bvh.find_batch(points.data(), nullptr, points.size(), batch), points.size());
+  std::vector<SurfaceHit> ties;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    ASSERT_GE(batch.tie_count(i), 1u) << "query " << i;
+    const double d = brute.find(points[i], {}, ties);
+    ASSERT_FALSE(ties.empty()) << "query " << i;
+    EXPECT_EQ(batch.distance[i], d) << "query " << i;
+    EXPECT_EQ(batch.ties_begin(i)->face, ties.front().face) << "query " << i;
+  }
+}
+
+TEST(NearestPoint, NegativeOrNonFiniteTieTolerancesAreRejected) {
+  const TriMesh sphere = test::icosphere(1);
+  const double bad[] = {-1e-9, std::nan(""), std::numeric_limits<double>::infinity()};
+  for (double x : bad) {
+    TieOptions relative, absolute;
+    relative.relative = x;
+    absolute.absolute_fraction = x;
+    for (IndexKind kind : {IndexKind::kBvh, IndexKind::kGrid, IndexKind::kBruteForce}) {
+      EXPECT_THROW(make_nearest_point_index(sphere, kind, relative), InvalidInput) << x;
+      EXPECT_THROW(make_nearest_point_index(sphere, kind, absolute), InvalidInput) << x;
+    }
   }
 }
 
