@@ -173,6 +173,11 @@ struct ReferenceStores {
 ComparisonResult compare_prepared(const TriMesh& a, const MeshSummary& summary_a, const TriMesh& b,
                                   const CompareOptions& options, const std::string& label_b,
                                   const ReferenceStores& stores, Clock::time_point start) {
+  // (A billion bins ended in std::bad_alloc; the other options are checked where they are used:
+  // the sampling step by the samplers, the tie tolerances by the index.)
+  if (options.histogram_bins < 1 || options.histogram_bins > kMaxHistogramBins)
+    throw InvalidInput("histogram_bins must be between 1 and " + std::to_string(kMaxHistogramBins) +
+                       " (got " + std::to_string(options.histogram_bins) + ")");
   const std::string& label_a = summary_a.label;
   ComparisonResult r;
   r.options = options;

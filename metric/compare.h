@@ -19,6 +19,9 @@ namespace meshdev {
 
 enum class Direction { kForward, kBackward, kBoth };  // A->B, B->A, both
 
+// The most histogram bins a comparison makes per measure (CompareOptions::histogram_bins).
+constexpr int kMaxHistogramBins = 1 << 20;
+
 struct CompareOptions {
   SamplingOptions sampling;     // on each sampled mesh; the default target count is
                                 // 10 x max(faces of A, faces of B) in both directions
@@ -27,8 +30,8 @@ struct CompareOptions {
   IndexKind index = IndexKind::kBvh;  // kBruteForce is the O(F)-per-query oracle
   TieOptions ties;                    // when nearest points count as equidistant
   int threads = 0;                    // OpenMP threads, 0 = default; results do not depend on it
-  int histogram_bins = 32;
-  bool keep_samples = false;  // keep per-sample data (for --samples and --colored outputs)
+  int histogram_bins = 32;            // of each measure's statistics, 1 to kMaxHistogramBins
+  bool keep_samples = false;          // keep per-sample data (for --samples and --colored outputs)
 };
 
 struct MeshSummary {
@@ -93,7 +96,8 @@ struct ComparisonResult {
 
 // Compares A (the reference) with B. Labels name the meshes in messages and reports.
 // Throws InvalidInput for unusable inputs (non-finite data, no faces where a surface is needed,
-// no samples, a requested attribute missing). Time: O(samples x query) plus O(F log F) builds.
+// no samples, a requested attribute missing) and option values out of range (histogram bins,
+// tie tolerances, sampling steps). Time: O(samples x query) plus O(F log F) builds.
 ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
                                 const std::string& label_a = "A", const std::string& label_b = "B");
 

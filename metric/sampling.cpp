@@ -19,6 +19,14 @@ namespace meshdev {
 namespace {
 
 constexpr std::size_t kMaxSamples = std::size_t{1} << 31;  // refuse steps that would exhaust memory
+
+// The refusal of a step that would make more than kMaxSamples samples. (The step in %g:
+// std::to_string printed a step of 1e-300 as 0.000000.)
+InvalidInput too_small(double step) {
+  std::ostringstream m;
+  m << "the sampling step " << step << " would create more than 2^31 samples; use a larger step";
+  return InvalidInput(m.str());
+}
 // Monte Carlo samples made per task of MonteCarloSamples::generate_all.
 constexpr std::size_t kGenerateRun = 4096;
 // Grid points within 1e-9 steps of an edge count as on it (0.9 / 0.1 is 8.999999999999998).
@@ -566,9 +574,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   }
   const std::size_t scan_count =
       o.faces == FaceSampling::kScanConversion ? scan_total(mesh, step, threads) : 0;
-  if (scan_count > kMaxSamples)
-    throw InvalidInput("the sampling step " + std::to_string(step) +
-                       " would create more than 2^31 samples; use a larger step");
+  if (scan_count > kMaxSamples) throw too_small(step);
   set.step = needs_step ? step : 0.0;
   // Room for every vertex and face sample at once (Monte Carlo makes at most target + faces),
   // so the set is not copied as it grows.
@@ -720,8 +726,7 @@ SampleSequence::SampleSequence(const TriMesh& mesh, const SamplingOptions& o, do
     std::vector<std::uint32_t> counts(mesh.faces.size());
     if (scan_total(face_legs(mesh, threads), order_.data(), order_.size(), step, threads,
                    counts.data()) > kMaxSamples)
-      throw InvalidInput("the sampling step " + std::to_string(step) +
-                         " would create more than 2^31 samples; use a larger step");
+      throw too_small(step);
     first_.resize(mesh.faces.size() + 1);
     first_[0] = 0;
     for (std::size_t k = 0; k < mesh.faces.size(); ++k) first_[k + 1] = first_[k] + counts[k];

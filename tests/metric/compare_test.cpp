@@ -363,6 +363,51 @@ TEST(Compare, ReferenceRejectsWhatCompareMeshesRejects) {
   EXPECT_EQ(r.backward->stats[0].max, 0.0);
 }
 
+// Option values out of range give InvalidInput naming the option, never a crash, an exception of
+// another type or a silent result (a billion histogram bins ended in std::bad_alloc, tie
+// tolerances of 0 in a crash, a step of 1e-300 read "0.000000" in its message).
+TEST(Compare, OptionsOutOfRangeAreRejectedByName) {
+  const TriMesh a = test::icosphere(2), b = test::icosphere(1);
+  struct Case {
+    std::function<void(CompareOptions&)> set;
+    const char* expected;  // in the message
+  };
+  const Case cases[] = {
+      {[](CompareOptions& o) { o.histogram_bins = 0; }, "histogram_bins"},
+      {[](CompareOptions& o) { o.histogram_bins = -5; }, "histogram_bins"},
+      {[](CompareOptions& o) { o.histogram_bins = 1000000000; }, "histogram_bins"},
+      {[](CompareOptions& o) { o.ties.relative = -1e-9; }, "tie tolerances"},
+      {[](CompareOptions& o) { o.ties.absolute_fraction = std::nan(""); }, "tie tolerances"},
+      {[](CompareOptions& o) { o.sampling.step = 1e-300; }, "step 1e-300 would"},
+      {[](CompareOptions& o) { o.sampling.step = -1; }, "sampling step"},
+  };
+  for (std::size_t i = 0; i < std::size(cases); ++i) {
+    CompareOptions o;
+    cases[i].set(o);
+    for (bool reference : {false, true}) {
+      try {
+        if (reference) {
+          ComparisonReference r(a, "A");
+          compare_meshes(r, b, o, "B");
+        } else {
+          compare_meshes(a, b, o, "A", "B");
+        }
+        ADD_FAILURE() << "case " << i << " was accepted";
+      } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find(cases[i].expected), std::string::npos)
+            << "case " << i << ": " << e.what();
+      }
+    }
+  }
+  // The bounds themselves are fine.
+  CompareOptions o;
+  o.histogram_bins = 1;
+  EXPECT_NO_THROW(compare_meshes(a, b, o, "A", "B"));
+  o.ties.relative = 0.0;
+  o.ties.absolute_fraction = 0.0;
+  EXPECT_NO_THROW(compare_meshes(a, b, o, "A", "B"));
+}
+
 TEST(Compare, PointCloudReferenceWorksForwardOnly) {
   TriMesh cloud;
   cloud.positions = {{0.2, 0.2, 1.0}, {0.5, 0.1, -2.0}};
