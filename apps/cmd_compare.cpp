@@ -279,8 +279,9 @@ void add_compare_command(CLI::App& root, int& exit_code) {
                   "nearest-point index: bvh, grid (hashed grid + BVH) or brute (the oracle)")
       ->check(CLI::IsMember({"bvh", "grid", "brute"}))
       ->capture_default_str();
-  cmd->add_option("--threads", args->threads, "OpenMP threads (0 = all); results do not change")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", args->threads,
+                  "OpenMP threads (0 = all, at most 1024); results do not change")
+      ->check(CLI::Range(0, meshdev::kMaxThreads));
   cmd->add_option("--json", args->json, "write the full report as JSON (schema meshdev.compare/1)");
   cmd->add_option("--csv", args->csv, "write summary rows as CSV");
   cmd->add_option("--samples", args->samples, "write one CSV row per sample");

@@ -12,6 +12,7 @@
 #include "harness/shard.h"
 #include "harness/sweep.h"
 #include "harness/sweep_config.h"
+#include "metric/compare.h"
 #include "metric/errors.h"
 
 namespace meshdev::app {
@@ -144,8 +145,9 @@ void add_sweep_command(CLI::App& root, int& exit_code) {
   cmd->add_option("--jobs,-j", args->jobs,
                   "(mesh, simplifier) groups run at once (default 1; OpenMP runs inside each)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--threads", args->threads, "OpenMP threads per comparison (0 = cores/jobs)")
-      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", args->threads,
+                  "OpenMP threads per comparison (0 = cores/jobs, at most 1024)")
+      ->check(CLI::Range(0, meshdev::kMaxThreads));
   cmd->add_option("--out,-o", args->out, "output folder");
   cmd->add_option("--shard", args->shard, "run only shard I of N (I/N, 0-based), e.g. 0/4");
   cmd->add_flag("--no-plots", args->no_plots, "do not draw the curves at the end");

@@ -169,7 +169,8 @@ SweepConfig parse_sweep_config(const std::string& json_text, const std::string& 
     throw InvalidInput(source + ": " + e.what());
   }
   if (c.jobs < 1) throw fail("jobs", "must be at least 1");
-  if (c.threads < 0) throw fail("threads", "must be 0 (automatic) or more");
+  if (c.threads < 0 || c.threads > kMaxThreads)
+    throw fail("threads", "must be 0 (automatic) to " + std::to_string(kMaxThreads));
   compare_options(c);  // validates sampling and normals
   return c;
 }

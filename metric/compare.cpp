@@ -173,11 +173,6 @@ struct ReferenceStores {
 ComparisonResult compare_prepared(const TriMesh& a, const MeshSummary& summary_a, const TriMesh& b,
                                   const CompareOptions& options, const std::string& label_b,
                                   const ReferenceStores& stores, Clock::time_point start) {
-  // (A billion bins ended in std::bad_alloc; the other options are checked where they are used:
-  // the sampling step by the samplers, the tie tolerances by the index.)
-  if (options.histogram_bins < 1 || options.histogram_bins > kMaxHistogramBins)
-    throw InvalidInput("histogram_bins must be between 1 and " + std::to_string(kMaxHistogramBins) +
-                       " (got " + std::to_string(options.histogram_bins) + ")");
   const std::string& label_a = summary_a.label;
   ComparisonResult r;
   r.options = options;
@@ -221,6 +216,23 @@ ComparisonResult compare_prepared(const TriMesh& a, const MeshSummary& summary_a
   return r;
 }
 
+// The thread count a comparison may run on, or InvalidInput naming `what`.
+void check_threads(int threads, const std::string& what) {
+  if (threads < 0 || threads > kMaxThreads)
+    throw InvalidInput(what + " must be between 0 (OpenMP's default) and " +
+                       std::to_string(kMaxThreads) + " (got " + std::to_string(threads) + ")");
+}
+
+// The options checked before any work: the thread count and the histogram (a billion bins ended
+// in std::bad_alloc). The others are checked where they are used: the sampling step by the
+// samplers, the tie tolerances by the index.
+void check_options(const CompareOptions& o) {
+  check_threads(o.threads, "threads");
+  if (o.histogram_bins < 1 || o.histogram_bins > kMaxHistogramBins)
+    throw InvalidInput("histogram_bins must be between 1 and " + std::to_string(kMaxHistogramBins) +
+                       " (got " + std::to_string(o.histogram_bins) + ")");
+}
+
 // A mesh a comparison can take: validate()'s checks, and at least one vertex (InvalidInput
 // naming `label` otherwise). O(V + F).
 void require_comparable(const TriMesh& m, const std::string& label, int threads) {
@@ -254,6 +266,7 @@ struct ComparisonReference::Cache {
 
 ComparisonReference::ComparisonReference(const TriMesh& a, std::string label, int threads)
     : mesh_(&a), label_(std::move(label)), cache_(std::make_unique<Cache>()) {
+  check_threads(threads, "threads");
   require_comparable(a, label_, threads);
   summary_ = summarize(a, label_, threads);
 }
@@ -263,6 +276,7 @@ ComparisonReference::~ComparisonReference() = default;
 ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
                                 const CompareOptions& options, const std::string& label_b) {
   const auto start = Clock::now();
+  check_options(options);
   require_comparable(b, label_b, options.threads);
   ComparisonReference::Cache& cache = *a.cache_;
   // What was kept is used only for the options that made it.
@@ -281,6 +295,7 @@ ComparisonResult compare_meshes(ComparisonReference& a, const TriMesh& b,
 ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const CompareOptions& options,
                                 const std::string& label_a, const std::string& label_b) {
   const auto start = Clock::now();
+  check_options(options);
   // A, then B: the order ComparisonReference checks them in.
   require_comparable(a, label_a, options.threads);
   require_comparable(b, label_b, options.threads);

@@ -21,6 +21,10 @@ enum class Direction { kForward, kBackward, kBoth };  // A->B, B->A, both
 
 // The most histogram bins a comparison makes per measure (CompareOptions::histogram_bins).
 constexpr int kMaxHistogramBins = 1 << 20;
+// The most OpenMP threads a comparison runs on (CompareOptions::threads, ComparisonReference):
+// far more than cores, which only adds overhead, and below where creating them fails (100,000
+// threads crashed the process with SIGSEGV inside OpenMP).
+constexpr int kMaxThreads = 1024;
 
 struct CompareOptions {
   SamplingOptions sampling;     // on each sampled mesh; the default target count is
@@ -29,9 +33,9 @@ struct CompareOptions {
   Direction direction = Direction::kBoth;
   IndexKind index = IndexKind::kBvh;  // kBruteForce is the O(F)-per-query oracle
   TieOptions ties;                    // when nearest points count as equidistant
-  int threads = 0;                    // OpenMP threads, 0 = default; results do not depend on it
-  int histogram_bins = 32;            // of each measure's statistics, 1 to kMaxHistogramBins
-  bool keep_samples = false;          // keep per-sample data (for --samples and --colored outputs)
+  int threads = 0;  // OpenMP threads, 0 = default, at most kMaxThreads; results do not depend on it
+  int histogram_bins = 32;    // of each measure's statistics, 1 to kMaxHistogramBins
+  bool keep_samples = false;  // keep per-sample data (for --samples and --colored outputs)
 };
 
 struct MeshSummary {

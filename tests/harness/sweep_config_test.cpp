@@ -59,6 +59,8 @@ TEST(SweepConfig, MistakesAreNamed) {
   EXPECT_NE(msg(R"({"meshes": ["a"], "ratios": [100]})").find("(0, 100)"), std::string::npos);
   EXPECT_NE(msg(R"({"meshes": ["a"], "sampling": "corners"})").find("corners"), std::string::npos);
   EXPECT_NE(msg(R"({"meshes": ["a"], "jobs": 0})").find("jobs"), std::string::npos);
+  EXPECT_NE(msg(R"({"meshes": ["a"], "threads": -1})").find("threads"), std::string::npos);
+  EXPECT_NE(msg(R"({"meshes": ["a"], "threads": 100000})").find("threads"), std::string::npos);
   EXPECT_THROW(parse_sweep_config("{not json", "", "c.json"), ParseError);
 }
 

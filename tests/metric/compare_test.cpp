@@ -364,8 +364,8 @@ TEST(Compare, ReferenceRejectsWhatCompareMeshesRejects) {
 }
 
 // Option values out of range give InvalidInput naming the option, never a crash, an exception of
-// another type or a silent result (a billion histogram bins ended in std::bad_alloc, tie
-// tolerances of 0 in a crash, a step of 1e-300 read "0.000000" in its message).
+// another type or a silent result (a billion histogram bins ended in std::bad_alloc, 100,000
+// threads and tie tolerances of 0 in crashes, a step of 1e-300 read "0.000000" in its message).
 TEST(Compare, OptionsOutOfRangeAreRejectedByName) {
   const TriMesh a = test::icosphere(2), b = test::icosphere(1);
   struct Case {
@@ -376,6 +376,8 @@ TEST(Compare, OptionsOutOfRangeAreRejectedByName) {
       {[](CompareOptions& o) { o.histogram_bins = 0; }, "histogram_bins"},
       {[](CompareOptions& o) { o.histogram_bins = -5; }, "histogram_bins"},
       {[](CompareOptions& o) { o.histogram_bins = 1000000000; }, "histogram_bins"},
+      {[](CompareOptions& o) { o.threads = -1; }, "threads must be between 0"},
+      {[](CompareOptions& o) { o.threads = 100000; }, "threads must be between 0"},
       {[](CompareOptions& o) { o.ties.relative = -1e-9; }, "tie tolerances"},
       {[](CompareOptions& o) { o.ties.absolute_fraction = std::nan(""); }, "tie tolerances"},
       {[](CompareOptions& o) { o.sampling.step = 1e-300; }, "step 1e-300 would"},
@@ -399,6 +401,7 @@ TEST(Compare, OptionsOutOfRangeAreRejectedByName) {
       }
     }
   }
+  EXPECT_THROW(ComparisonReference(a, "A", kMaxThreads + 1), InvalidInput);
   // The bounds themselves are fine.
   CompareOptions o;
   o.histogram_bins = 1;
