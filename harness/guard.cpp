@@ -69,6 +69,20 @@ GuardResult run_guard(const std::vector<ResultRow>& baseline, const std::vector<
       throw InvalidInput("--metrics: '" + m +
                          "' is not a numeric results column (e.g. "
                          "symmetric_mean, hausdorff, forward_max, symmetric_mean_rel)");
+  // Bounds that compare nothing, or NaN, would let every run pass.
+  if (!(options.tolerance >= 0) || !std::isfinite(options.tolerance) ||
+      !(options.absolute_tolerance >= 0) || !std::isfinite(options.absolute_tolerance)) {
+    std::ostringstream m;
+    m << "the tolerances must be finite and >= 0 (relative " << options.tolerance << ", absolute "
+      << options.absolute_tolerance << ")";
+    throw InvalidInput(m.str());
+  }
+  if (baseline.empty())
+    throw InvalidInput("the baseline holds no result rows: there is nothing to guard");
+  for (const std::string& m : options.measures)
+    if (std::none_of(baseline.begin(), baseline.end(),
+                     [&](const ResultRow& r) { return r.get("measure") == m; }))
+      throw InvalidInput("--measures: '" + m + "' is the measure of no baseline row");
   auto wanted = [&](const ResultRow& r) {
     return options.measures.empty() || r.get("measure").empty() ||
            std::find(options.measures.begin(), options.measures.end(), r.get("measure")) !=

@@ -37,7 +37,8 @@ struct GuardResult {
 double parse_tolerance(const std::string& text);
 
 // Compares the two row sets (as read from CSV). Throws InvalidInput for a metric that is not
-// a numeric results column. O(rows log rows x metrics).
+// a numeric results column, a measure of no baseline row, an empty baseline, and tolerances
+// that are negative or not finite (each would let any run pass). O(rows log rows x metrics).
 GuardResult run_guard(const std::vector<ResultRow>& baseline, const std::vector<ResultRow>& current,
                       const GuardOptions& options);
 

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "metric/errors.h"
 
 namespace meshdev::harness {
@@ -94,6 +97,25 @@ TEST(Guard, MetricsAndMeasuresSelectWhatIsChecked) {
   EXPECT_FALSE(run_guard(baseline(), cur, o).passed());
   o.metrics = {"mesh"};
   EXPECT_THROW(run_guard(baseline(), cur, o), InvalidInput);
+}
+
+// What would compare nothing, or let anything pass, is an error, not a PASS: an empty baseline
+// (a PASS of 0 values before), a measure no baseline row has (a typo passed every run), a NaN or
+// negative tolerance (`--absolute-tolerance nan` passed every run).
+TEST(Guard, WhatWouldLetEveryRunPassIsRejected) {
+  EXPECT_THROW(run_guard({}, baseline(), GuardOptions{}), InvalidInput);
+  GuardOptions o;
+  o.measures = {"geomtry"};
+  EXPECT_THROW(run_guard(baseline(), baseline(), o), InvalidInput);
+  o.measures = {"normal"};
+  EXPECT_TRUE(run_guard(baseline(), baseline(), o).passed());
+  for (double bad : {std::nan(""), -1e-12, std::numeric_limits<double>::infinity()}) {
+    GuardOptions absolute, relative;
+    absolute.absolute_tolerance = bad;
+    relative.tolerance = bad;
+    EXPECT_THROW(run_guard(baseline(), baseline(), absolute), InvalidInput) << bad;
+    EXPECT_THROW(run_guard(baseline(), baseline(), relative), InvalidInput) << bad;
+  }
 }
 
 TEST(Guard, ToleranceParsing) {

@@ -184,6 +184,13 @@ p = run(["guard", "--baseline", base, "--current", write_variant("degraded2", de
 check(p.returncode == 0, "guard: --tolerance 60% accepts +50 %")
 p = run(["guard", "--baseline", base, "--current", base, "--metrics", "nonsense"])
 check(p.returncode == 4, "guard: an unknown metric exits 4")
+# What would let every run pass exits 4: a NaN tolerance, a measure of no row, an empty baseline.
+p = run(["guard", "--baseline", base, "--current", base, "--absolute-tolerance", "nan"])
+check(p.returncode == 4 and "tolerances" in p.stderr, "guard: a NaN tolerance exits 4")
+p = run(["guard", "--baseline", base, "--current", base, "--measures", "geomtry"])
+check(p.returncode == 4 and "geomtry" in p.stderr, "guard: a measure of no row exits 4")
+p = run(["guard", "--baseline", os.devnull, "--current", base])
+check(p.returncode == 4 and "nothing to guard" in p.stderr, "guard: an empty baseline exits 4")
 
 # 4. Shards + merge.
 parts = []
