@@ -8,6 +8,7 @@
 #include "apps/exit_codes.h"
 #include "metric/colorbar.h"
 #include "metric/colored_mesh.h"
+#include "metric/colormap.h"
 #include "metric/compare.h"
 #include "metric/deviation_atlas.h"
 #include "metric/errors.h"
@@ -87,6 +88,7 @@ CompareOptions to_options(const CompareArgs& args) {
 
 int run_compare(const CompareArgs& args) {
   const CompareOptions options = to_options(args);
+  if (!args.range.empty()) check_color_range(args.range[0], args.range[1]);  // before the work
   const TriMesh a = read_mesh(args.a, args.threads);
   const TriMesh b = read_mesh(args.b, args.threads);
   const ComparisonResult result = compare_meshes(a, b, options, args.a, args.b);

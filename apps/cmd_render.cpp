@@ -8,6 +8,7 @@
 #include "apps/commands.h"
 #include "apps/exit_codes.h"
 #include "metric/colorbar.h"
+#include "metric/colormap.h"
 #include "metric/draw_text.h"
 #include "metric/errors.h"
 #include "metric/io/mesh_io.h"
@@ -83,6 +84,7 @@ int run_render(const RenderArgs& args) {
     ColorBarOptions b;
     b.scale = parse_color_scale(args.color_scale);
     if (args.range.size() == 2) {
+      check_color_range(args.range[0], args.range[1]);
       b.lo = args.range[0];
       b.hi = args.range[1];
     } else {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <sstream>
 
 #include "metric/errors.h"
 
@@ -50,6 +51,14 @@ Vec3 map_color(double value, double lo, double hi, ColorScale scale) {
       break;
   }
   return lerp_stops(kPaperStops, t);
+}
+
+void check_color_range(double lo, double hi) {
+  if (std::isfinite(lo) && std::isfinite(hi) && lo < hi) return;
+  std::ostringstream m;
+  m << "colour range [" << lo << ", " << hi << "]: both ends must be finite, the first below the "
+    << "second";
+  throw InvalidInput(m.str());
 }
 
 ColorScale parse_color_scale(const std::string& name) {

@@ -17,6 +17,11 @@ enum class ColorScale {
 // NaN or an empty range gives the middle colour). O(1).
 Vec3 map_color(double value, double lo, double hi, ColorScale scale = ColorScale::kPaper);
 
+// A colour range given by a user (--range LO HI, a fixed range of ColoringOptions or
+// AtlasOptions): throws InvalidInput unless both ends are finite and lo < hi. (map_color takes
+// any range: NaN or reversed ends gave a mesh of one colour without a word.) O(1).
+void check_color_range(double lo, double hi);
+
 // Parses "paper", "viridis", "turbo"; throws InvalidInput otherwise.
 ColorScale parse_color_scale(const std::string& name);
 

@@ -137,6 +137,7 @@ DeviationAtlas build_deviation_atlas(const TriMesh& m, const DirectionResult& d,
   }
 
   // 5. Colours, and the mesh with atlas texture coordinates (exact: texel centre = sample UV).
+  if (o.fixed_range) check_color_range(o.lo, o.hi);
   a.lo = o.fixed_range ? o.lo : d.stats[o.measure].min;
   a.hi = o.fixed_range ? o.hi : d.stats[o.measure].max;
   a.image = Image(side, side, o.background);

@@ -111,6 +111,9 @@ code, out, err = run("compare", a, b, "--no-such-option")
 check("unknown option: exit 2", code == 2, f"{code} {err}")
 code, out, err = run("compare", a, b, "--step", "-1")
 check("negative step: exit 2", code == 2, f"{code} {err}")
+# A colour range that is reversed or not finite coloured everything one colour without a word.
+code, out, err = run("compare", a, b, "--range", "1", "0", "--colored", path("range.ply"))
+check("reversed --range: exit 4 naming the range", code == 4 and "colour range" in err, f"{code} {err}")
 # 100,000 OpenMP threads crashed the process (SIGSEGV) before --threads had an upper bound.
 code, out, err = run("compare", a, b, "--threads", "100000")
 check("--threads above 1024: exit 2 naming the range", code == 2 and "1024" in err, f"{code} {err}")

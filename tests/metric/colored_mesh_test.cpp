@@ -36,6 +36,23 @@ TEST(ColoredMesh, ColoursFollowTheDeviationAcrossTheMesh) {
   }
 }
 
+// A fixed range is checked (colormap.h, check_color_range); the data's own range may be empty
+// (identical meshes: every deviation 0) and gives the middle colour.
+TEST(ColoredMesh, AFixedRangeIsCheckedTheDatasMayBeEmpty) {
+  const TriMesh a = test::grid(4);
+  CompareOptions o;
+  o.direction = Direction::kForward;
+  o.keep_samples = true;
+  const ComparisonResult r = compare_meshes(a, a, o);
+  ColoringOptions reversed;
+  reversed.fixed_range = true;
+  reversed.lo = 1.0;
+  reversed.hi = 0.0;
+  EXPECT_THROW(color_by_deviation(a, *r.forward, reversed), InvalidInput);
+  const TriMesh colored = color_by_deviation(a, *r.forward, {});
+  EXPECT_EQ(colored.channel("color")->values[1], map_color(0.0, 0.0, 0.0).y);
+}
+
 TEST(ColoredMesh, FaceSamplesAloneStillGiveEveryVertexAValue) {
   TriMesh a = test::grid(4);
   TriMesh b = test::grid(2, 1.0, 0.3);

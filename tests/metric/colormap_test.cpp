@@ -23,6 +23,17 @@ TEST(Colormap, EmptyRangeAndNaNGiveTheMiddleColour) {
   EXPECT_EQ(map_color(std::nan(""), 0.0, 1.0), (Vec3{0, 1, 0}));
 }
 
+// A range a user gives must be finite and increasing: NaN or reversed ends gave a mesh of one
+// colour without a word.
+TEST(Colormap, AUserRangeMustBeFiniteAndIncreasing) {
+  EXPECT_NO_THROW(check_color_range(0.0, 1e-9));
+  EXPECT_NO_THROW(check_color_range(-2.0, -1.0));
+  EXPECT_THROW(check_color_range(1.0, 0.0), InvalidInput);
+  EXPECT_THROW(check_color_range(1.0, 1.0), InvalidInput);
+  EXPECT_THROW(check_color_range(std::nan(""), 1.0), InvalidInput);
+  EXPECT_THROW(check_color_range(0.0, INFINITY), InvalidInput);
+}
+
 TEST(Colormap, PerceptualScalesAreMonotoneInLightnessAtTheEnds) {
   const Vec3 lo = map_color(0, 0, 1, ColorScale::kViridis),
              hi = map_color(1, 0, 1, ColorScale::kViridis);
