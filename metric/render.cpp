@@ -179,6 +179,8 @@ Image render_mesh(const TriMesh& mesh, const Image* texture, const RenderOptions
   if (o.size < 16 || o.size > 8192 || o.supersample < 1 || o.supersample > 4)
     throw InvalidInput("render size must be in [16, 8192] and supersampling in [1, 4]");
   if (o.views.empty()) throw InvalidInput("no view given");
+  if (!(o.ambient >= 0.0 && o.ambient <= 1.0))  // (NaN passed the command line's range check)
+    throw InvalidInput("ambient light must be in [0, 1]");
   // Positions in a y-up frame; normals from the geometry (area-weighted).
   std::vector<Vec3> pos = mesh.positions;
   if (o.up == 'z')

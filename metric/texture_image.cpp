@@ -27,8 +27,9 @@ Vec3 Image::pixel(int x, int y) const {
 void Image::set(int x, int y, const Vec3& c) {
   if (x < 0 || y < 0 || x >= width || y >= height) return;
   std::uint8_t* p = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-  for (int k = 0; k < 3; ++k)
-    p[k] = static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255.0));
+  for (int k = 0; k < 3; ++k)  // NaN as 0 (std::clamp passes it through, lround's is unspecified)
+    p[k] = c[k] == c[k] ? static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0, 1.0) * 255.0))
+                        : std::uint8_t{0};
 }
 
 Image load_image(const std::string& path) {

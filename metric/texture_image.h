@@ -18,7 +18,7 @@ struct Image {
   bool empty() const { return width <= 0 || height <= 0; }
   // Pixel (x, y) as sRGB in [0,1]; (0, 0) is the top-left pixel. Precondition: inside.
   Vec3 pixel(int x, int y) const;
-  // Sets pixel (x, y) from sRGB in [0,1] (clamped, rounded); ignores pixels outside.
+  // Sets pixel (x, y) from sRGB in [0,1] (clamped, rounded; NaN as 0); ignores pixels outside.
   void set(int x, int y, const Vec3& c);
 };
 

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "metric/colorbar.h"
 #include "metric/errors.h"
 #include "tests/support/shapes.h"
@@ -34,6 +36,25 @@ TEST(Render, VertexColoursShowWhereTheMeshIs) {
   ASSERT_EQ(img.width, 64);
   EXPECT_EQ(img.pixel(32, 32), (Vec3{1, 0, 0}));  // the square covers the centre
   EXPECT_EQ(img.pixel(1, 1), (Vec3{1, 1, 1}));    // the corner is background
+}
+
+// Options out of range are refused by name; a NaN ambient light passed the command line's
+// [0, 1] check and drew pixels from lround(NaN). A NaN colour is drawn as 0.
+TEST(Render, OptionsOutOfRangeAreRefusedAndNaNColoursAreBlack) {
+  const TriMesh m = colored(test::square(), {1, 0, 0});
+  for (double ambient : {std::nan(""), -0.1, 1.5}) {
+    RenderOptions o = front_unlit();
+    o.ambient = ambient;
+    EXPECT_THROW(render_mesh(m, nullptr, o), InvalidInput) << ambient;
+  }
+  RenderOptions o = front_unlit();
+  o.size = 8;
+  EXPECT_THROW(render_mesh(m, nullptr, o), InvalidInput);
+  Image img(2, 1);
+  img.set(0, 0, {std::nan(""), 0.5, 2.0});
+  EXPECT_EQ(img.rgb[0], 0);
+  EXPECT_EQ(img.rgb[1], 128);
+  EXPECT_EQ(img.rgb[2], 255);
 }
 
 TEST(Render, TheNearerSurfaceWinsTheDepthTest) {
