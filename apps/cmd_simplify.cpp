@@ -1,6 +1,7 @@
 // meshdev simplify IN OUT --method NAME (--ratio R | --faces N) [--option key=value ...]
 // meshdev simplify --list
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -48,6 +49,8 @@ int run_simplify(const SimplifyArgs& a) {
   if (a.list) return run_list();
   if (a.input.empty() || a.output.empty() || a.method.empty())
     throw CLI::ValidationError("simplify", "IN, OUT and --method are required (or --list)");
+  if (std::isnan(a.ratio))  // (NaN passes CLI::Range and then read as "no --ratio")
+    throw CLI::ValidationError("simplify", "--ratio must be a number in [0, 1)");
   if ((a.ratio >= 0.0) == (a.faces > 0))
     throw CLI::ValidationError("simplify", "give exactly one of --ratio and --faces");
   if (!ends_with(a.output, ".ply") && !ends_with(a.output, ".obj"))

@@ -114,6 +114,10 @@ check("negative step: exit 2", code == 2, f"{code} {err}")
 # A colour range that is reversed or not finite coloured everything one colour without a word.
 code, out, err = run("compare", a, b, "--range", "1", "0", "--colored", path("range.ply"))
 check("reversed --range: exit 4 naming the range", code == 4 and "colour range" in err, f"{code} {err}")
+# --ratio nan passed CLI11's range check and was then read as "no --ratio".
+code, out, err = run("simplify", a, path("s.ply"), "--method", "openmesh-quadric", "--ratio", "nan")
+check("simplify --ratio nan: exit 2 naming --ratio", code == 2 and "--ratio must be" in err,
+      f"{code} {err}")
 # 100,000 OpenMP threads crashed the process (SIGSEGV) before --threads had an upper bound.
 code, out, err = run("compare", a, b, "--threads", "100000")
 check("--threads above 1024: exit 2 naming the range", code == 2 and "1024" in err, f"{code} {err}")
