@@ -39,8 +39,9 @@ TriMesh color_by_deviation(const TriMesh& sampled, const DirectionResult& d,
                            const ColoringOptions& o) {
   const std::vector<double> values = vertex_deviation(sampled, d, o.measure);
   double lo = o.lo, hi = o.hi;
-  if (o.fixed_range) check_color_range(lo, hi);
-  if (!o.fixed_range) {
+  if (o.fixed_range) {
+    check_color_range(lo, hi);
+  } else {
     lo = d.stats[o.measure].min;
     hi = d.stats[o.measure].max;
   }

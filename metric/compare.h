@@ -119,7 +119,8 @@ ComparisonResult compare_meshes(const TriMesh& a, const TriMesh& b, const Compar
 class ComparisonReference {
  public:
   // Validates A (InvalidInput as compare_meshes throws it, naming `label`) and summarises it on
-  // `threads` OpenMP threads (0 = the default). O(V + F).
+  // `threads` OpenMP threads (0 = the default, at most kMaxThreads; InvalidInput otherwise).
+  // O(V + F).
   ComparisonReference(const TriMesh& a, std::string label, int threads = 0);
   ComparisonReference(const ComparisonReference&) = delete;
   ComparisonReference& operator=(const ComparisonReference&) = delete;

@@ -71,10 +71,6 @@ bool match_corners(const Vec3* source, const Vec3& a, const Vec3& b, const Vec3&
   return true;
 }
 
-}  // namespace
-
-namespace {
-
 // The tie tolerances as given, or InvalidInput: both finite and >= 0 (a NaN or a negative one
 // would leave queries with no tie at all, not even their nearest face).
 const TieOptions& checked(const TieOptions& ties) {

@@ -37,8 +37,8 @@ struct TieOptions {
 // The least relative tie tolerance honoured. Below about 2.5 double rounding units the squared
 // tie limit of the minimum d, (d (1 + relative))^2 with each step rounded, can fall below the
 // rounded d^2 itself, and the nearest face would drop out of its own tie set (leaving a query
-// with no answer). From 1e-15 on it cannot: d (1 + 2e-15) squared is above d^2 by more than
-// those roundings.
+// with no answer). From 1e-15 on it cannot: (d (1 + 1e-15))^2 exceeds d^2 by about 2e-15 of it,
+// more than the five roundings on the way can take (5.6e-16).
 constexpr double kMinTieRelative = 1e-15;
 
 // What a query may know beyond its position.
