@@ -27,6 +27,7 @@ InvalidInput too_small(double step) {
   m << "the sampling step " << step << " would create more than 2^31 samples; use a larger step";
   return InvalidInput(m.str());
 }
+
 // Monte Carlo samples made per task of MonteCarloSamples::generate_all.
 constexpr std::size_t kGenerateRun = 4096;
 // Grid points within 1e-9 steps of an edge count as on it (0.9 / 0.1 is 8.999999999999998).
