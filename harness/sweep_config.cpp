@@ -227,6 +227,7 @@ CompareOptions compare_options(const SweepConfig& c) {
   o.sampling.step_fraction = c.step_fraction;
   o.sampling.target_count = c.sample_count;
   o.sampling.seed = c.seed;
+  check_sampling_options(o.sampling);
   o.attributes.attributes = c.attributes;
   o.attributes.normals = parse_normal_source(c.normals);
   o.threads = c.threads;

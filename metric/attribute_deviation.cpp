@@ -11,6 +11,7 @@
 
 #include "metric/channel_chords.h"
 #include "metric/chunk_schedule.h"
+#include "metric/memory_limit.h"
 #include "metric/morton_order.h"
 #include "metric/plane_bounds.h"
 #include "metric/simd2.h"
@@ -365,6 +366,17 @@ constexpr bool kIsGenerated<GeneratedSamples<Source>> = true;
 
 }  // namespace
 
+double deviation_bytes_per_sample(const std::vector<Measure>& measures,
+                                  const DeviationOptions& options) {
+  const bool cohen = std::any_of(measures.begin(), measures.end(), [](const Measure& m) {
+    return m.kind == MeasureKind::kCohenTexture;
+  });
+  return static_cast<double>(measures.size() * sizeof(double) + sizeof(Feature) +
+                             sizeof(std::uint32_t) +
+                             (options.keep_nearest ? sizeof(SurfaceHit) : 0) +
+                             (cohen ? sizeof(std::uint8_t) + sizeof(double) : 0));
+}
+
 QueryHint sample_hint(const TriMesh& reference, const Sample& s) {
   QueryHint hint;
   if (s.face == kNoFace) return hint;
@@ -400,6 +412,10 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     if (measures[m].kind == MeasureKind::kCohenTexture) cohen.push_back(m);
     if (is_texture_color(measures[m].kind)) texture.push_back(m);
   }
+  // Refused before any of it is allocated where it cannot fit.
+  check_fits_in_memory(static_cast<double>(n) * deviation_bytes_per_sample(measures, options),
+                       "the deviations of " + std::to_string(n) + " samples",
+                       "use fewer samples or a larger sampling step");
   FormSet texture_forms;
   for (std::size_t m : texture) texture_forms.add(measures[m].kind);
   const AttributeChannel* uv_ref = reference.channel("texcoord");

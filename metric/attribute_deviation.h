@@ -58,9 +58,17 @@ struct SampleDeviations {
 // point clouds. O(1).
 QueryHint sample_hint(const TriMesh& reference, const Sample& s);
 
+// The bytes compute_deviations allocates per sample for `measures` with `options`: each
+// measure's value, the feature and the tie count, the nearest point where kept, and Cohen's case
+// and UV gap where measured. O(measures).
+double deviation_bytes_per_sample(const std::vector<Measure>& measures,
+                                  const DeviationOptions& options);
+
 // Deviation of each sample of `reference` against `target` (whose index is `index`), for every
 // measure of `measures` (measure 0 must be geometry). Units: those of each measure (absolute).
 // Results do not depend on the thread count: each sample's result depends only on the sample.
+// Throws InvalidInput, before anything is allocated or queried, where the samples times
+// deviation_bytes_per_sample exceed the memory here (metric/memory_limit.h).
 // O(samples x query cost x (1 + ties x attribute dims)).
 SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
                                     const PreparedMesh& target, const NearestPointIndex& index,

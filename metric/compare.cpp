@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "metric/errors.h"
+#include "metric/memory_limit.h"
 
 namespace meshdev {
 namespace {
@@ -61,6 +62,17 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   r.seconds_sampling = seconds_since(t0);
   auto sample = [&](std::size_t i) { return generated ? generated->at(i) : samples.samples[i]; };
 
+  // The direction's per-sample memory (the deviations, and the weights where they differ) is
+  // checked before the index is built: a count that cannot fit is refused before any work.
+  DeviationOptions deviation_options;
+  deviation_options.threads = o.threads;
+  deviation_options.keep_nearest = o.keep_samples;
+  check_fits_in_memory(static_cast<double>(r.samples) *
+                           (deviation_bytes_per_sample(measures, deviation_options) +
+                            (equal_weight > 0.0 ? 0.0 : static_cast<double>(sizeof(double)))),
+                       "the deviations of " + std::to_string(r.samples) + " samples",
+                       "use fewer samples or a larger sampling step");
+
   t0 = Clock::now();
   std::unique_ptr<NearestPointIndex> local_index;
   std::unique_ptr<NearestPointIndex>& index = index_store ? *index_store : local_index;
@@ -70,9 +82,6 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   r.index = index->name();
 
   t0 = Clock::now();
-  DeviationOptions deviation_options;
-  deviation_options.threads = o.threads;
-  deviation_options.keep_nearest = o.keep_samples;
   SampleDeviations dev =
       generated ? compute_deviations(*generated, from, to, *index, measures, deviation_options)
                 : compute_deviations(samples, from, to, *index, measures, deviation_options);

@@ -13,12 +13,13 @@
 #include <sstream>
 
 #include "metric/errors.h"
+#include "metric/memory_limit.h"
 #include "metric/morton_order.h"
 
 namespace meshdev {
 namespace {
 
-constexpr std::size_t kMaxSamples = std::size_t{1} << 31;  // refuse steps that would exhaust memory
+constexpr std::size_t kMaxSamples = kMaxSampleCount;
 
 // The refusal of a step that would make more than kMaxSamples samples. (The step in %g:
 // std::to_string printed a step of 1e-300 as 0.000000.)
@@ -416,11 +417,16 @@ void add_vertex_samples(const TriMesh& m, int threads, SampleSet& set) {
   }
 }
 
-void add_edge_samples(const TriMesh& m, double step, SampleSet& set) {
-  struct Edge {
-    std::uint32_t lo, hi, face;
-    std::uint8_t c_lo, c_hi;
-  };
+// A mesh edge once (the corners' vertices in increasing order) with one face that has it and
+// the corners of that face it joins.
+struct Edge {
+  std::uint32_t lo, hi, face;
+  std::uint8_t c_lo, c_hi;
+};
+
+// Every distinct edge of the mesh's faces, in vertex order; zero-length index pairs (a face
+// naming one vertex twice) are left out. O(F log F).
+std::vector<Edge> unique_edges(const TriMesh& m) {
   std::vector<Edge> edges;
   edges.reserve(3 * m.faces.size());
   for (std::uint32_t f = 0; f < m.faces.size(); ++f)
@@ -437,11 +443,38 @@ void add_edge_samples(const TriMesh& m, double step, SampleSet& set) {
       std::unique(edges.begin(), edges.end(),
                   [](const Edge& x, const Edge& y) { return x.lo == y.lo && x.hi == y.hi; }),
       edges.end());
+  return edges;
+}
+
+// Points on an edge `len` long with step Δ: round(len / Δ), at least 1; or kMaxSamples + 1
+// where that is more than kMaxSamples or not a number (llround of a huge or NaN ratio is
+// undefined).
+std::size_t edge_point_count(double len, double step) {
+  const double ratio = len / step;
+  if (!(ratio < static_cast<double>(kMaxSamples))) return kMaxSamples + 1;
+  return std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(ratio)));
+}
+
+// How many edge samples `edges` (unique_edges) get with step Δ; throws InvalidInput (too_small)
+// once they are more than kMaxSamples, before any is made (an edge 1e100 long with a unit step
+// made samples until memory ran out). O(E).
+std::size_t edge_total(const TriMesh& m, const std::vector<Edge>& edges, double step) {
+  std::size_t total = 0;
+  for (const Edge& e : edges) {
+    total += edge_point_count(norm(m.positions[e.hi] - m.positions[e.lo]), step);
+    if (total > kMaxSamples) throw too_small(step);
+  }
+  return total;
+}
+
+// The edge samples of `edges` with step Δ. Precondition: edge_total(m, edges, step) succeeded.
+void add_edge_samples(const TriMesh& m, const std::vector<Edge>& edges, double step,
+                      SampleSet& set) {
   for (const Edge& e : edges) {
     const Vec3& p = m.positions[e.lo];
     const Vec3& q = m.positions[e.hi];
     const double len = norm(q - p);
-    const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(len / step)));
+    const std::size_t n = edge_point_count(len, step);
     for (std::size_t k = 0; k < n; ++k) {
       const double t = (static_cast<double>(k) + 0.5) / static_cast<double>(n);
       Sample s;
@@ -530,9 +563,7 @@ void check_options(const TriMesh& mesh, const SamplingOptions& o) {
     throw InvalidInput(
         "cannot sample faces or edges of a mesh without faces (a point cloud); "
         "sample its vertices only");
-  if (o.step < 0.0 || o.step_fraction < 0.0 || !std::isfinite(o.step) ||
-      !std::isfinite(o.step_fraction))
-    throw InvalidInput("the sampling step must be a positive finite number");
+  check_sampling_options(o);
 }
 
 std::size_t face_target(const TriMesh& mesh, const SamplingOptions& o) {
@@ -540,6 +571,15 @@ std::size_t face_target(const TriMesh& mesh, const SamplingOptions& o) {
 }
 
 }  // namespace
+
+void check_sampling_options(const SamplingOptions& o) {
+  if (o.step < 0.0 || o.step_fraction < 0.0 || !std::isfinite(o.step) ||
+      !std::isfinite(o.step_fraction))
+    throw InvalidInput("the sampling step must be a positive finite number");
+  if (o.target_count > kMaxSamples)  // Monte Carlo allocated them and ran out of memory
+    throw InvalidInput("a target of " + with_commas(o.target_count) +
+                       " face samples is more than the 2^31 (2,147,483,648) a sample set holds");
+}
 
 bool monte_carlo_only(const SamplingOptions& o) {
   return o.faces == FaceSampling::kMonteCarlo && !o.vertices && !o.edges;
@@ -576,16 +616,21 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   const std::size_t scan_count =
       o.faces == FaceSampling::kScanConversion ? scan_total(mesh, step, threads) : 0;
   if (scan_count > kMaxSamples) throw too_small(step);
+  const std::vector<Edge> edges = o.edges ? unique_edges(mesh) : std::vector<Edge>{};
+  const std::size_t edge_count = o.edges ? edge_total(mesh, edges, step) : 0;
   set.step = needs_step ? step : 0.0;
-  // Room for every vertex and face sample at once (Monte Carlo makes at most target + faces),
-  // so the set is not copied as it grows.
+  // Room for every vertex, edge and face sample at once (Monte Carlo makes at most target +
+  // faces), so the set is not copied as it grows.
   const std::size_t expected =
-      (o.vertices ? mesh.positions.size() : 0) + scan_count +
+      (o.vertices ? mesh.positions.size() : 0) + edge_count + scan_count +
       (o.faces == FaceSampling::kMonteCarlo ? target + mesh.faces.size() : 0);
+  check_fits_in_memory(static_cast<double>(expected) * sizeof(Sample),
+                       with_commas(expected) + " samples",
+                       "use fewer samples or a larger sampling step");
   if (expected <= kMaxSamples) set.samples.reserve(expected);
 
   if (o.vertices) add_vertex_samples(mesh, threads, set);
-  if (o.edges) add_edge_samples(mesh, step, set);
+  if (o.edges) add_edge_samples(mesh, edges, step, set);
   if (o.faces == FaceSampling::kScanConversion) add_scan_samples(mesh, step, threads, set);
   if (o.faces == FaceSampling::kMonteCarlo) {
     const MonteCarloSamples mc(mesh, target, o.seed, threads);

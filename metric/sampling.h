@@ -177,9 +177,20 @@ class SampleSequence {
 // Whether `options` asks for samples SampleSequence can make (no edge samples). O(1).
 bool sequence_sampling(const SamplingOptions& options);
 
+// The most samples of one kind (vertices, edge points, face points) a sample set holds: sample
+// counts, steps and targets that would exceed it are refused.
+constexpr std::size_t kMaxSampleCount = std::size_t{1} << 31;
+
+// The checks of `options` that do not depend on the mesh: a step that is negative or not finite,
+// a target_count above kMaxSampleCount. Throws InvalidInput naming the option; every sampler
+// makes them first, and a caller can make them before it has a mesh (the sweep's config). O(1).
+void check_sampling_options(const SamplingOptions& options);
+
 // Samples `mesh` as `options` says. `diagonal` scales step_fraction (pass the reference mesh's
 // bbox diagonal so both directions of a comparison use the same absolute Δ). Throws InvalidInput
-// for a non-positive step, or face/edge sampling on a mesh without faces.
+// for a non-positive step, or face/edge sampling on a mesh without faces, a step or target that
+// would make more than kMaxSampleCount samples of a kind, or a set larger than the memory here
+// (metric/memory_limit.h), before any sample is made.
 // O(F + V + number of samples) time and memory; the Δ search for a target count is O(F log).
 SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& options, double diagonal);
 

@@ -121,6 +121,15 @@ check("simplify --ratio nan: exit 2 naming --ratio", code == 2 and "--ratio must
 # 100,000 OpenMP threads crashed the process (SIGSEGV) before --threads had an upper bound.
 code, out, err = run("compare", a, b, "--threads", "100000")
 check("--threads above 1024: exit 2 naming the range", code == 2 and "1024" in err, f"{code} {err}")
+# Sample counts that cannot be held: edge samples at a step far too small were made until
+# memory ran out, and a Monte Carlo count beyond 2^31 was allocated (both "out of memory", exit
+# 70). A count within 2^31 whose results exceed the memory here: Compare.ASampleCountBeyond...
+code, out, err = run("compare", a, b, "--sampling", "edges", "--step", "1e-12")
+check("edge step far too small: exit 4 naming the step", code == 4 and "1e-12 would" in err,
+      f"{code} {err}")
+code, out, err = run("compare", a, b, "--sampling", "montecarlo", "--sample-count", "4294967296")
+check("--sample-count beyond 2^31: exit 4 naming the limit",
+      code == 4 and "more than the 2^31" in err, f"{code} {err}")
 cloud = write("cloud.off", "OFF\n2 0 0\n0.5 0.5 1\n0.2 0.2 2\n")
 code, out, err = run("compare", a, cloud)
 check("point cloud as B: exit 4 explaining why", code == 4 and "no faces" in err, f"{code} {err}")

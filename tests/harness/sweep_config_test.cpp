@@ -61,6 +61,9 @@ TEST(SweepConfig, MistakesAreNamed) {
   EXPECT_NE(msg(R"({"meshes": ["a"], "jobs": 0})").find("jobs"), std::string::npos);
   EXPECT_NE(msg(R"({"meshes": ["a"], "threads": -1})").find("threads"), std::string::npos);
   EXPECT_NE(msg(R"({"meshes": ["a"], "threads": 100000})").find("threads"), std::string::npos);
+  // Refused here, before any mesh is read, not as a metric-failed row per job.
+  EXPECT_NE(msg(R"({"meshes": ["a"], "sample_count": 4000000000})").find("more than the 2^31"),
+            std::string::npos);
   EXPECT_THROW(parse_sweep_config("{not json", "", "c.json"), ParseError);
 }
 

@@ -3,10 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <random>
 #include <string>
 
+#include "metric/errors.h"
+#include "metric/memory_limit.h"
 #include "tests/support/shapes.h"
 
 namespace meshdev {
@@ -228,6 +231,34 @@ TEST(AttributeDeviation, SamplesMadeAsTheyAreQueriedGiveTheStoredSetsResults) {
     expect_same(compute_deviations(stored_scan, plan.a, plan.b, *bvh, plan.measures, options),
                 compute_deviations(SampleSequence(a, scan, 1.0), plan.a, plan.b, *bvh,
                                    plan.measures, options));
+  }
+}
+
+// Deviations that cannot fit in this machine's memory are refused before anything is allocated
+// or queried, saying what they need: 2^31 Monte Carlo samples, made on demand (no sample set),
+// with the nearest points kept: about 100 bytes each.
+TEST(AttributeDeviation, DeviationsBeyondTheMemoryAreRefusedBeforeAnyQuery) {
+  const TriMesh a = with_channels(test::grid(4, 1.0, 0.1), 1);
+  const TriMesh b = with_channels(test::grid(4, 1.0, 0.0), 2);
+  const AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
+  const double needed = std::ldexp(1.0, 31) * deviation_bytes_per_sample(plan.measures, {});
+  EXPECT_EQ(deviation_bytes_per_sample(plan.measures, {}),
+            plan.measures.size() * sizeof(double) + 5.0 + sizeof(SurfaceHit));
+  if (usable_memory_bytes() == 0 || static_cast<double>(usable_memory_bytes()) >= needed)
+    GTEST_SKIP() << "this machine has room for the deviations of 2^31 samples";
+  SamplingOptions so;
+  so.vertices = false;
+  so.faces = FaceSampling::kMonteCarlo;
+  so.target_count = std::size_t{1} << 31;
+  const MonteCarloSamples samples = monte_carlo_samples(a, so);
+  const auto bvh = make_nearest_point_index(b, IndexKind::kBvh);
+  try {
+    compute_deviations(samples, plan.a, plan.b, *bvh, plan.measures, DeviationOptions{});
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the deviations of 2147483648 samples need about"),
+              std::string::npos)
+        << e.what();
   }
 }
 

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <functional>
 #include <iterator>
+#include <string>
 
 #include "metric/errors.h"
+#include "metric/memory_limit.h"
 #include "tests/support/shapes.h"
 
 namespace meshdev {
@@ -363,6 +365,26 @@ TEST(Compare, ReferenceRejectsWhatCompareMeshesRejects) {
   EXPECT_EQ(r.backward->stats[0].max, 0.0);
 }
 
+// A comparison whose per-sample results cannot fit in this machine's memory is refused before
+// B's index is built or any query made, saying what it needs: 2^31 Monte Carlo samples, made on
+// demand (no sample set), about 29 bytes of results each.
+TEST(Compare, ASampleCountBeyondTheMemoryIsRefusedBeforeAnyWork) {
+  CompareOptions o;
+  o.sampling.vertices = false;
+  o.sampling.faces = FaceSampling::kMonteCarlo;
+  o.sampling.target_count = std::size_t{1} << 31;
+  if (usable_memory_bytes() == 0 ||
+      static_cast<double>(usable_memory_bytes()) >= std::ldexp(29.0, 31))
+    GTEST_SKIP() << "this machine has room for the results of 2^31 samples";
+  try {
+    compare_meshes(test::icosphere(2), test::icosphere(1), o, "A", "B");
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("the deviations of 21474836"), std::string::npos)
+        << e.what();
+  }
+}
+
 // Option values out of range give InvalidInput naming the option, never a crash, an exception of
 // another type or a silent result (a billion histogram bins ended in std::bad_alloc, 100,000
 // threads and tie tolerances of 0 in crashes, a step of 1e-300 read "0.000000" in its message).
@@ -382,6 +404,13 @@ TEST(Compare, OptionsOutOfRangeAreRejectedByName) {
       {[](CompareOptions& o) { o.ties.absolute_fraction = std::nan(""); }, "tie tolerances"},
       {[](CompareOptions& o) { o.sampling.step = 1e-300; }, "step 1e-300 would"},
       {[](CompareOptions& o) { o.sampling.step = -1; }, "sampling step"},
+      {[](CompareOptions& o) { o.sampling.target_count = (std::size_t{1} << 31) + 1; },
+       "is more than the 2^31"},
+      {[](CompareOptions& o) {
+         o.sampling.edges = true;
+         o.sampling.step = 1e-12;
+       },
+       "step 1e-12 would"},
   };
   for (std::size_t i = 0; i < std::size(cases); ++i) {
     CompareOptions o;

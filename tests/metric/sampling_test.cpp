@@ -6,10 +6,12 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "metric/errors.h"
 #include "metric/io/mesh_io.h"
+#include "metric/memory_limit.h"
 #include "metric/morton_order.h"
 #include "tests/support/shapes.h"
 #include "tests/support/test_data.h"
@@ -453,6 +455,87 @@ TEST(Sampling, AStepFarTooSmallIsRefusedAsSoonAsTheCountPassesTheLimit) {
   for (int threads : {1, 2}) {
     o.threads = threads;
     EXPECT_THROW(sample_surface(m, o, 1.0), InvalidInput);
+  }
+}
+
+// Edge samples that would be more than 2^31 are refused before any is made: a step far too small
+// for the mesh, an edge 1e100 long at a unit step (before, its count was an llround of 1e100,
+// undefined, and samples were made until memory ran out), and an edge whose length overflows to
+// inf.
+TEST(Sampling, EdgeSamplesBeyondTheLimitAreRefusedBeforeAnyIsMade) {
+  auto with_edge = [](double from, double to) {  // an edge from (from, 0, 1) to (to, 0, 1)
+    TriMesh m = test::grid(4);
+    const auto base = static_cast<std::uint32_t>(m.positions.size());
+    m.positions.push_back({from, 0, 1});
+    m.positions.push_back({to, 0, 1});
+    m.positions.push_back({from, 1, 1});
+    m.faces.push_back({base, base + 1, base + 2});
+    return m;
+  };
+  SamplingOptions o;
+  o.vertices = false;
+  o.edges = true;
+  o.faces = FaceSampling::kNone;
+  o.step = 1e-12;
+  EXPECT_THROW(sample_surface(test::grid(4), o, 1.0), InvalidInput);
+  o.step = 1.0;
+  for (const double from : {0.0, -1e308}) {  // 1e100 long; 2e308, inf
+    const TriMesh m = with_edge(from, from == 0.0 ? 1e100 : 1e308);
+    try {
+      sample_surface(m, o, 1.0);
+      ADD_FAILURE() << "edge from " << from << ": no exception";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("more than 2^31 samples"), std::string::npos)
+          << e.what();
+    }
+  }
+  const SampleSet fine = sample_surface(with_edge(0.0, 10.0), o, 1.0);  // a count within the limit
+  EXPECT_GT(fine.edge_count, 10u);
+}
+
+// A target of more than 2^31 face samples is refused with that reason, stored or made on demand,
+// by Monte Carlo or scan conversion (before, Monte Carlo allocated them: std::bad_alloc, or the
+// OOM killer where the allocation fit the overcommit; scan conversion blamed needles).
+TEST(Sampling, ATargetBeyondTheLimitIsRefusedWithThatReason) {
+  const TriMesh m = test::grid(4);
+  for (const FaceSampling faces : {FaceSampling::kMonteCarlo, FaceSampling::kScanConversion}) {
+    SamplingOptions o;
+    o.faces = faces;
+    o.target_count = (std::size_t{1} << 31) + 1;
+    for (const bool vertices : {false, true}) {
+      o.vertices = vertices;
+      try {
+        sample_surface(m, o, 1.0);
+        ADD_FAILURE() << "no exception";
+      } catch (const InvalidInput& e) {
+        EXPECT_NE(std::string(e.what()).find("2,147,483,649 face samples is more than the 2^31"),
+                  std::string::npos)
+            << e.what();
+      }
+      EXPECT_THROW(SampleSequence(m, o, 1.0), InvalidInput);
+    }
+    if (faces == FaceSampling::kMonteCarlo) {
+      o.vertices = false;
+      EXPECT_THROW(monte_carlo_samples(m, o), InvalidInput);
+    }
+  }
+}
+
+// A sample set that cannot fit in this machine's memory is refused before it is made, saying
+// what it needs (vertices and 2^31 Monte Carlo samples: 72 bytes each, about 144 GiB).
+TEST(Sampling, ASampleSetBeyondTheMemoryIsRefusedBeforeItIsMade) {
+  const double needed = std::ldexp(1.0, 31) * sizeof(Sample);
+  if (usable_memory_bytes() == 0 || static_cast<double>(usable_memory_bytes()) >= needed)
+    GTEST_SKIP() << "this machine has room for 2^31 samples";
+  SamplingOptions o;
+  o.vertices = true;
+  o.faces = FaceSampling::kMonteCarlo;
+  o.target_count = std::size_t{1} << 31;
+  try {
+    sample_surface(test::grid(4), o, 1.0);
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("samples need about"), std::string::npos) << e.what();
   }
 }
 
