@@ -16,7 +16,7 @@ namespace meshdev {
 
 struct DeviationOptions {
   int threads = 0;  // OpenMP threads; 0 = OpenMP's default (OMP_NUM_THREADS or all cores)
-  // Fill SampleDeviations::nearest (72 bytes per sample). compare() asks for it only when
+  // Fill SampleDeviations::nearest (64 bytes per sample). compare() asks for it only when
   // per-sample output is kept; the statistics need only nearest_feature.
   bool keep_nearest = true;
   // References whose faces and per-vertex channels take at least this many bytes get those

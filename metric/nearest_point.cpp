@@ -154,7 +154,7 @@ namespace {
                                                        const TriangleFrame& frame,
                                                        const QueryHint& hint) {
   const TriangleHit h = closest_point_on_triangle(p, a, b, c, frame);
-  SurfaceHit s{face, h.sq_distance, h.bary, h.feature, h.point};
+  SurfaceHit s{face, h.feature, h.sq_distance, h.bary, h.point};
   if (hint.has_source() && s.sq_distance <= eval.exact_check_sq)
     apply_identical_triangle(p, a, b, c, hint, s);
   return s;

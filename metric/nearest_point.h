@@ -15,13 +15,16 @@
 namespace meshdev {
 
 // One candidate nearest point: a face of the target, the closest point on it and where it lies.
+// 64 bytes: the feature sits beside the face, in what was the face's padding (72 bytes with it
+// after the barycentrics: BatchHits and the nearest points kept per sample take 11 % less).
 struct SurfaceHit {
   std::uint32_t face = kNoFace;
+  Feature feature = Feature::kVertex;
   double sq_distance = 0;               // absolute units^2
   std::array<double, 3> bary{1, 0, 0};  // on the target face's corners 0, 1, 2
-  Feature feature = Feature::kVertex;
   Vec3 point;
 };
+static_assert(sizeof(SurfaceHit) == 64, "SurfaceHit: one cache line's size");
 
 // When two candidates count as equally near (docs/metric.md "Ties"): a face is a tie when its
 // distance d satisfies d <= d_min (1 + relative) + absolute, absolute = absolute_fraction x the
@@ -72,7 +75,7 @@ struct QueryHint {
 // The answers to a batch of queries (NearestPointIndex::find_batch), flattened so a batch of
 // thousands of queries makes no per-query allocation.
 struct BatchHits {
-  // find_batch stops after the query that brings the ties held to this many (72 bytes each), so
+  // find_batch stops after the query that brings the ties held to this many (64 bytes each), so
   // a batch stays a few MB even where every query ties with millions of faces.
   static constexpr std::size_t kMaxHits = std::size_t{1} << 16;
 
