@@ -19,9 +19,7 @@
 namespace meshdev {
 namespace {
 
-constexpr std::size_t kMaxSamples = kMaxSampleCount;
-
-// The refusal of a step that would make more than kMaxSamples samples. (The step in %g:
+// The refusal of a step that would make more than kMaxSampleCount samples. (The step in %g:
 // std::to_string printed a step of 1e-300 as 0.000000.)
 InvalidInput too_small(double step) {
   std::ostringstream m;
@@ -62,7 +60,7 @@ double unit_random(std::uint64_t seed, std::uint64_t face, std::uint64_t k) {
 // otherwise be counted for ever: found by fuzz_nearest_point). Every operation is correctly
 // rounded and monotone in Δ, so the count never grows as Δ grows (which detail::solve_scan_step
 // relies on; the cap keeps that). O(min(lab / Δ, limit)).
-std::size_t scan_count(double lab, double lac, double step, std::size_t limit = kMaxSamples) {
+std::size_t scan_count(double lab, double lac, double step, std::size_t limit = kMaxSampleCount) {
   const auto over = static_cast<double>(limit);
   const double rows = lab > 0.0 ? std::floor(lab / step + kGridSlack) : 0.0;
   if (!(rows <= over)) return limit + 1;
@@ -123,8 +121,8 @@ std::vector<Legs> face_legs(const TriMesh& m, int threads) {
 // parallel; an integer sum, so the result does not depend on the thread count. O(n · rows).
 std::size_t scan_total(const std::vector<Legs>& legs, const std::uint32_t* faces, std::size_t n,
                        double step, int threads, std::uint32_t* counts = nullptr,
-                       std::size_t limit = kMaxSamples) {
-  assert(limit <= kMaxSamples);  // counts fit 32 bits
+                       std::size_t limit = kMaxSampleCount) {
+  assert(limit <= kMaxSampleCount);  // counts fit 32 bits
   std::atomic<bool> over{false};
   std::size_t total = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1024) reduction(+ : total)
@@ -259,8 +257,8 @@ double solve_scan_step(const TriMesh& m, std::size_t target, int threads, bool s
   // most about as much again from the rows' ends, and a corner per face), so the search takes
   // the same steps as counting them in full; a needle far longer than the other faces, whose
   // count at the bracket's ends is out of proportion with its area, is not counted to the end.
-  const std::size_t limit =
-      std::min<std::size_t>(kMaxSamples, 64 * std::min(target, kMaxSamples) + 4 * faces + 1024);
+  const std::size_t limit = std::min<std::size_t>(
+      kMaxSampleCount, 64 * std::min(target, kMaxSampleCount) + 4 * faces + 1024);
   auto total = [&](double step, std::vector<std::uint32_t>& counts) {
     return scan_total(legs, nullptr, faces, step, threads, settle ? counts.data() : nullptr, limit);
   };
@@ -446,23 +444,23 @@ std::vector<Edge> unique_edges(const TriMesh& m) {
   return edges;
 }
 
-// Points on an edge `len` long with step Δ: round(len / Δ), at least 1; or kMaxSamples + 1
-// where that is more than kMaxSamples or not a number (llround of a huge or NaN ratio is
+// Points on an edge `len` long with step Δ: round(len / Δ), at least 1; or kMaxSampleCount + 1
+// where that is more than kMaxSampleCount or not a number (llround of a huge or NaN ratio is
 // undefined).
 std::size_t edge_point_count(double len, double step) {
   const double ratio = len / step;
-  if (!(ratio < static_cast<double>(kMaxSamples))) return kMaxSamples + 1;
+  if (!(ratio < static_cast<double>(kMaxSampleCount))) return kMaxSampleCount + 1;
   return std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(ratio)));
 }
 
 // How many edge samples `edges` (unique_edges) get with step Δ; throws InvalidInput (too_small)
-// once they are more than kMaxSamples, before any is made (an edge 1e100 long with a unit step
+// once they are more than kMaxSampleCount, before any is made (an edge 1e100 long with a unit step
 // made samples until memory ran out). O(E).
 std::size_t edge_total(const TriMesh& m, const std::vector<Edge>& edges, double step) {
   std::size_t total = 0;
   for (const Edge& e : edges) {
     total += edge_point_count(norm(m.positions[e.hi] - m.positions[e.lo]), step);
-    if (total > kMaxSamples) throw too_small(step);
+    if (total > kMaxSampleCount) throw too_small(step);
   }
   return total;
 }
@@ -576,7 +574,7 @@ void check_sampling_options(const SamplingOptions& o) {
   if (o.step < 0.0 || o.step_fraction < 0.0 || !std::isfinite(o.step) ||
       !std::isfinite(o.step_fraction))
     throw InvalidInput("the sampling step must be a positive finite number");
-  if (o.target_count > kMaxSamples)  // Monte Carlo allocated them and ran out of memory
+  if (o.target_count > kMaxSampleCount)  // Monte Carlo allocated them and ran out of memory
     throw InvalidInput("a target of " + with_commas(o.target_count) +
                        " face samples is more than the 2^31 (2,147,483,648) a sample set holds");
 }
@@ -615,7 +613,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   }
   const std::size_t scan_count =
       o.faces == FaceSampling::kScanConversion ? scan_total(mesh, step, threads) : 0;
-  if (scan_count > kMaxSamples) throw too_small(step);
+  if (scan_count > kMaxSampleCount) throw too_small(step);
   const std::vector<Edge> edges = o.edges ? unique_edges(mesh) : std::vector<Edge>{};
   const std::size_t edge_count = o.edges ? edge_total(mesh, edges, step) : 0;
   set.step = needs_step ? step : 0.0;
@@ -627,7 +625,7 @@ SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& o, double d
   check_fits_in_memory(static_cast<double>(expected) * sizeof(Sample),
                        with_commas(expected) + " samples",
                        "use fewer samples or a larger sampling step");
-  if (expected <= kMaxSamples) set.samples.reserve(expected);
+  if (expected <= kMaxSampleCount) set.samples.reserve(expected);
 
   if (o.vertices) add_vertex_samples(mesh, threads, set);
   if (o.edges) add_edge_samples(mesh, edges, step, set);
@@ -771,7 +769,7 @@ SampleSequence::SampleSequence(const TriMesh& mesh, const SamplingOptions& o, do
     order_ = detail::face_visit_order(mesh, threads);
     std::vector<std::uint32_t> counts(mesh.faces.size());
     if (scan_total(face_legs(mesh, threads), order_.data(), order_.size(), step, threads,
-                   counts.data()) > kMaxSamples)
+                   counts.data()) > kMaxSampleCount)
       throw too_small(step);
     first_.resize(mesh.faces.size() + 1);
     first_[0] = 0;

@@ -177,8 +177,8 @@ class SampleSequence {
 // Whether `options` asks for samples SampleSequence can make (no edge samples). O(1).
 bool sequence_sampling(const SamplingOptions& options);
 
-// The most samples of one kind (vertices, edge points, face points) a sample set holds: sample
-// counts, steps and targets that would exceed it are refused.
+// The most face samples, and the most edge samples, a sample set holds (each kind counted on its
+// own): targets and steps that would make more are refused.
 constexpr std::size_t kMaxSampleCount = std::size_t{1} << 31;
 
 // The checks of `options` that do not depend on the mesh: a step that is negative or not finite,
