@@ -89,6 +89,12 @@ CompareOptions to_options(const CompareArgs& args) {
 int run_compare(const CompareArgs& args) {
   const CompareOptions options = to_options(args);
   if (!args.range.empty()) check_color_range(args.range[0], args.range[1]);  // before the work
+  // Where the results go, also before the work: a comparison of millions of samples is not lost
+  // to a mistyped folder (exit 5). The atlas's folder is made.
+  for (const std::string* path :
+       {&args.json, &args.csv, &args.samples, &args.colored, &args.samples_ply, &args.colorbar})
+    if (!path->empty()) check_output_path(*path);
+  if (!args.atlas.empty()) make_output_folder(args.atlas);
   const TriMesh a = read_mesh(args.a, args.threads);
   const TriMesh b = read_mesh(args.b, args.threads);
   const ComparisonResult result = compare_meshes(a, b, options, args.a, args.b);

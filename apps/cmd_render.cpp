@@ -11,6 +11,7 @@
 #include "metric/colormap.h"
 #include "metric/draw_text.h"
 #include "metric/errors.h"
+#include "metric/io/atomic_file.h"
 #include "metric/io/mesh_io.h"
 #include "metric/io/write_png.h"
 #include "metric/render.h"
@@ -45,6 +46,7 @@ Image stack(const Image& top, const Image& below) {
 }
 
 int run_render(const RenderArgs& args) {
+  check_output_path(args.out);  // before the work (exit 5)
   const TriMesh mesh = read_mesh(args.mesh);
   RenderOptions o;
   o.views = parse_views(args.views);

@@ -9,6 +9,7 @@
 #include "apps/commands.h"
 #include "apps/exit_codes.h"
 #include "metric/errors.h"
+#include "metric/io/atomic_file.h"
 #include "metric/io/mesh_io.h"
 #include "metric/io/write_obj.h"
 #include "metric/io/write_ply.h"
@@ -63,6 +64,7 @@ int run_simplify(const SimplifyArgs& a) {
       throw InvalidInput("--option '" + kv + "': expected key=value");
     simplifier->set_option(kv.substr(0, eq), kv.substr(eq + 1));
   }
+  check_output_path(a.output);  // before the work (exit 5)
   TriMesh mesh = read_mesh(a.input);
   SimplifyRequest request =
       a.ratio >= 0.0 ? SimplifyRequest::reduction(a.ratio) : SimplifyRequest::faces(a.faces);

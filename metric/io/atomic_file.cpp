@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <streambuf>
 #include <vector>
 
@@ -121,6 +122,25 @@ void write_file_atomically(const std::string& path,
     cleanup();
     throw;
   }
+}
+
+void check_output_path(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) fail(path, "cannot write", EISDIR);
+  std::string folder = std::filesystem::path(path).parent_path().string();
+  if (folder.empty()) folder = ".";
+  if (::stat(folder.c_str(), &st) != 0) fail(path, "cannot write in folder " + folder, errno);
+  if (!S_ISDIR(st.st_mode)) fail(path, "cannot write in folder " + folder, ENOTDIR);
+  if (::access(folder.c_str(), W_OK | X_OK) != 0)
+    fail(path, "cannot write in folder " + folder, errno);
+}
+
+void make_output_folder(const std::string& folder) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (!error && !std::filesystem::is_directory(folder, error) && !error)
+    error = std::make_error_code(std::errc::not_a_directory);
+  if (error) throw WriteError(folder + ": cannot create the folder (" + error.message() + ")");
 }
 
 }  // namespace meshdev

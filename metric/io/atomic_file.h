@@ -15,4 +15,15 @@ namespace meshdev {
 // O(bytes written); buffers 64 KiB.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& body);
 
+// Checks, before the work whose result goes to `path`, that it can be written there: its folder
+// exists and is a folder the process may write in, and `path` itself is not a folder. Throws
+// WriteError("<path>: <what> (<strerror>)") otherwise, so that a long computation is not lost
+// to a mistyped output folder. Nothing is created. O(1) system calls.
+void check_output_path(const std::string& path);
+
+// Creates `folder` and its missing parents (an output folder named by the user); throws
+// WriteError("<folder>: cannot create the folder (<reason>)") if that fails or a file of that
+// name is in the way. O(depth) system calls.
+void make_output_folder(const std::string& folder);
+
 }  // namespace meshdev

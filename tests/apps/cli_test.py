@@ -143,6 +143,20 @@ before = open(path("r.json")).read()
 code, out, err = run("compare", a, b, "--json", path("no/such/dir/r.json"), "-q")
 check("json into a missing folder: exit 5", code == 5, f"{code} {err}")
 check("earlier output intact", open(path("r.json")).read() == before)
+# Output paths are checked before the work (a long comparison was computed, then lost to a
+# mistyped folder under -q): the message names the folder and no time is reported.
+code, out, err = run("compare", a, b, "--json", path("no/such/dir/r.json"))
+check("missing output folder: refused before the comparison",
+      code == 5 and "cannot write in folder" in err and "time:" not in out, f"{code} {out} {err}")
+for command in (["simplify", a, path("no/such/dir/s.ply"), "--method", "openmesh-quadric",
+                 "--ratio", "0.5"],
+                ["render", a, "-o", path("no/such/dir/r.png")]):
+    code, out, err = run(*command)
+    check(f"{command[0]} into a missing folder: exit 5 naming the folder",
+          code == 5 and "cannot write in folder" in err, f"{code} {err}")
+code, out, err = run("compare", a, b, "--atlas", path("new/atlas/folder"), "-q")
+check("--atlas makes its folder", code == 0 and os.path.isdir(path("new/atlas/folder")) and
+      any(f.endswith("_atlas.png") for f in os.listdir(path("new/atlas/folder"))), f"{code} {err}")
 
 code, out, err = run("--help")
 check("--help exits 0", code == 0 and "compare" in out)

@@ -128,5 +128,37 @@ TEST(AtomicFile, DirectoryAsTargetIsAWriteError) {
                      dir, "Is a directory");
 }
 
+// The check made before the work: a path in a missing folder, in a file taken for a folder, or
+// that is a folder, is a WriteError naming it; a path in an existing folder, a bare file name
+// (the working folder) and a device pass, and nothing is created.
+TEST(AtomicFile, OutputPathIsCheckedBeforeTheWork) {
+  const std::string dir = scratch_dir("atomic_check");
+  const std::string missing = dir + "/no/such/folder/out.json";
+  expect_write_error([&] { check_output_path(missing); }, missing, "No such file or directory");
+  std::ofstream(dir + "/file.txt") << "x";
+  const std::string under_file = dir + "/file.txt/out.json";
+  expect_write_error([&] { check_output_path(under_file); }, under_file, "Not a directory");
+  expect_write_error([&] { check_output_path(dir); }, dir, "Is a directory");
+  EXPECT_NO_THROW(check_output_path(dir + "/out.json"));
+  EXPECT_NO_THROW(check_output_path("out.json"));
+  EXPECT_NO_THROW(check_output_path("/dev/null"));
+  EXPECT_FALSE(fs::exists(dir + "/no"));
+  EXPECT_FALSE(fs::exists(dir + "/out.json"));
+}
+
+// An output folder is made with its parents (and may exist already); a file in the way is a
+// WriteError naming it.
+TEST(AtomicFile, OutputFolderIsMadeWithItsParents) {
+  const std::string dir = scratch_dir("atomic_folder");
+  make_output_folder(dir + "/a/b/c");
+  EXPECT_TRUE(fs::is_directory(dir + "/a/b/c"));
+  EXPECT_NO_THROW(make_output_folder(dir + "/a/b/c"));
+  std::ofstream(dir + "/file.txt") << "x";
+  expect_write_error([&] { make_output_folder(dir + "/file.txt"); }, dir + "/file.txt",
+                     "cannot create the folder");
+  expect_write_error([&] { make_output_folder(dir + "/file.txt/d"); }, dir + "/file.txt/d",
+                     "cannot create the folder");
+}
+
 }  // namespace
 }  // namespace meshdev::test
