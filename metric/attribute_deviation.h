@@ -68,7 +68,7 @@ double deviation_bytes_per_sample(const std::vector<Measure>& measures,
 // measure of `measures` (measure 0 must be geometry). Units: those of each measure (absolute).
 // Results do not depend on the thread count: each sample's result depends only on the sample.
 // Throws InvalidInput, before anything is allocated or queried, where the samples times
-// deviation_bytes_per_sample exceed the memory here (metric/memory_limit.h).
+// deviation_bytes_per_sample exceed the memory available (metric/memory_limit.h).
 // O(samples x query cost x (1 + ties x attribute dims)).
 SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
                                     const PreparedMesh& target, const NearestPointIndex& index,

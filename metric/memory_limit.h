@@ -8,14 +8,16 @@
 
 namespace meshdev {
 
-// The memory this process may use, in bytes: the machine's physical memory (sysconf), or the
-// cgroup's memory.max where that is smaller (a container's limit); 0 if neither is known. O(1)
-// (reads one small file).
-std::size_t usable_memory_bytes();
+// The memory a new allocation can still get, in bytes: the kernel's MemAvailable (free memory
+// plus what it can reclaim, net of what this process and others already hold), or less where the
+// cgroup's memory.max leaves less (a container's limit, less its memory.current); the machine's
+// physical memory where /proc/meminfo cannot be read; 0 if none is known. It changes from call
+// to call. O(1) (reads three small files).
+std::size_t available_memory_bytes();
 
-// Throws InvalidInput "<what> need about X GiB, more than the Y GiB of memory here; <advice>"
-// if `bytes` (an estimate, as a double so that an absurd request cannot overflow it) exceeds
-// usable_memory_bytes(); does nothing where that is unknown. O(1).
+// Throws InvalidInput "<what> need about X GiB, more than the Y GiB of memory available here;
+// <advice>" if `bytes` (an estimate, as a double so that an absurd request cannot overflow it)
+// exceeds available_memory_bytes(); does nothing where that is unknown. O(1).
 void check_fits_in_memory(double bytes, const std::string& what, const std::string& advice);
 
 }  // namespace meshdev

@@ -189,8 +189,8 @@ void check_sampling_options(const SamplingOptions& options);
 // Samples `mesh` as `options` says. `diagonal` scales step_fraction (pass the reference mesh's
 // bbox diagonal so both directions of a comparison use the same absolute Δ). Throws InvalidInput
 // for a non-positive step, or face/edge sampling on a mesh without faces, a step or target that
-// would make more than kMaxSampleCount samples of a kind, or a set larger than the memory here
-// (metric/memory_limit.h), before any sample is made.
+// would make more than kMaxSampleCount samples of a kind, or a set larger than the memory
+// available (metric/memory_limit.h), before any sample is made.
 // O(F + V + number of samples) time and memory; the Δ search for a target count is O(F log).
 SampleSet sample_surface(const TriMesh& mesh, const SamplingOptions& options, double diagonal);
 
