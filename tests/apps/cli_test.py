@@ -123,7 +123,7 @@ code, out, err = run("compare", a, b, "--threads", "100000")
 check("--threads above 1024: exit 2 naming the range", code == 2 and "1024" in err, f"{code} {err}")
 # Sample counts that cannot be held: edge samples at a step far too small were made until
 # memory ran out, and a Monte Carlo count beyond 2^31 was allocated (both "out of memory", exit
-# 70). A count within 2^31 whose results exceed the memory here: Compare.ASampleCountBeyond...
+# 70). A count within 2^31 whose results exceed the memory available: Compare.ASampleCount...
 code, out, err = run("compare", a, b, "--sampling", "edges", "--step", "1e-12")
 check("edge step far too small: exit 4 naming the step", code == 4 and "1e-12 would" in err,
       f"{code} {err}")
