@@ -29,6 +29,7 @@ int run_plot(const PlotArgs& a) {
   if (r.exit_code == 0) return kOk;
   if (r.exit_code == 3) return kInputError;
   if (r.exit_code == 4 || r.exit_code == 127) return kInvalidInput;
+  if (r.exit_code == 5) return kWriteError;
   return r.exit_code == 2 ? kUsage : kInternal;
 }
 
@@ -52,7 +53,10 @@ void add_plot_command(CLI::App& root, int& exit_code) {
                   "column to plot: symmetric_mean (paper Fig. 8), symmetric_rms, hausdorff, ...")
       ->capture_default_str();
   cmd->add_option("--measures", a->measures, "comma-separated (default: every measure)");
-  cmd->add_option("--formats", a->formats, "png,svg,pdf")->capture_default_str();
+  cmd->add_option("--formats", a->formats,
+                  "comma-separated: png,svg,pdf or any other format matplotlib writes (eps, jpg, "
+                  "tif, ...)")
+      ->capture_default_str();
   cmd->add_option("--x", a->x, "x axis: ratio (reduction %) or faces (reached, log)")
       ->check(CLI::IsMember({"ratio", "faces"}))
       ->capture_default_str();

@@ -8,7 +8,7 @@ paper's Fig. 8. Run by `meshdev plot` with Debian's /usr/bin/python3 (package py
 
 Usage: plot_curves.py CSV --out DIR [--statistic symmetric_mean] [--relative] [--log]
                       [--measures geometry,normal] [--formats png,svg,pdf] [--x ratio|faces]
-Exit codes: 0 ok, 2 usage, 3 unreadable CSV, 4 nothing to plot.
+Exit codes: 0 ok, 2 usage, 3 unreadable CSV, 4 nothing to plot, 5 a plot not written.
 """
 import argparse
 import csv
@@ -30,10 +30,15 @@ def read_rows(path):
             text = f.read()
     except OSError as e:
         die(3, "%s: %s" % (path, e.strerror))
+    except UnicodeDecodeError as e:  # was a traceback (exit 70)
+        die(3, "%s: not a meshdev results CSV (not UTF-8 text: byte %d)" % (path, e.start))
     # A torn last line (an interrupted sweep) is ignored, as meshdev itself does.
     if text and not text.endswith("\n"):
         text = text[: text.rfind("\n") + 1]
-    rows = list(csv.DictReader(text.splitlines()))
+    try:
+        rows = list(csv.DictReader(text.splitlines()))
+    except csv.Error as e:  # e.g. a NUL byte
+        die(3, "%s: not a meshdev results CSV (%s)" % (path, e))
     if rows and "symmetric_mean" not in rows[0]:
         die(3, "%s: not a meshdev results CSV (no symmetric_mean column)" % path)
     return rows
@@ -141,16 +146,33 @@ def main():
     markers = "osD^v<>ph*"
     styles = {l: (cmap(i % 10), markers[i % len(markers)]) for i, l in enumerate(labels)}
     units = {r["measure"]: r["unit"] for r in ok_rows}
+    # Formats and the output folder are checked before any figure is drawn (an unknown format
+    # and a folder under a file were tracebacks, exit 70, after the work).
+    supported = plt.figure().canvas.get_supported_filetypes()
+    plt.close("all")
     formats = [f for f in args.formats.split(",") if f]
-    os.makedirs(args.out, exist_ok=True)
+    unknown = [f for f in formats if f not in supported]
+    if unknown or not formats:
+        die(2, "--formats: %s not supported; choose from %s"
+            % (",".join(unknown) or "none given", ", ".join(sorted(supported))))
+    try:
+        os.makedirs(args.out, exist_ok=True)
+    except OSError as e:
+        die(5, "%s: cannot create the folder (%s)" % (args.out, e.strerror))
     written = []
 
     def save(fig, stem):
         for fmt in formats:
             path = os.path.join(args.out, stem + "." + fmt)
             meta = {"svg": {"Date": None}, "pdf": {"CreationDate": None}}.get(fmt, {})
-            fig.savefig(path + ".tmp." + fmt, format=fmt, dpi=150, bbox_inches="tight", metadata=meta)
-            os.replace(path + ".tmp." + fmt, path)  # complete or absent
+            try:
+                fig.savefig(path + ".tmp." + fmt, format=fmt, dpi=150, bbox_inches="tight",
+                            metadata=meta)
+                os.replace(path + ".tmp." + fmt, path)  # complete or absent
+            except OSError as e:  # a full disk, a folder removed meanwhile
+                if os.path.exists(path + ".tmp." + fmt):
+                    os.remove(path + ".tmp." + fmt)
+                die(5, "%s: cannot write (%s)" % (path, e.strerror))
             written.append(path)
         plt.close(fig)
 

@@ -211,6 +211,20 @@ p = run(["plot", base, "--out", os.path.join(scratch, "plots")])
 made = sorted(os.listdir(os.path.join(scratch, "plots"))) if p.returncode == 0 else []
 check(p.returncode == 0 and "icosphere3_fig8.png" in made and "icosphere3_geometry.svg" in made
       and "grid12_normal.pdf" in made, "plot writes PNG/SVG/PDF (%s)" % p.stderr.strip()[-200:])
+# Three mistakes that were Python tracebacks (exit 70), the last two after the figures' work.
+binary = os.path.join(scratch, "binary.csv")
+with open(binary, "wb") as f:
+    f.write(bytes([0xB3, 0x00, 0xFF]) * 1000)
+p = run(["plot", binary, "--out", os.path.join(scratch, "plots_binary")])
+check(p.returncode == 3 and "not UTF-8" in p.stderr, "plot of a binary file: exit 3 (%s)"
+      % p.stderr.strip()[-200:])
+p = run(["plot", base, "--out", os.path.join(scratch, "plots_gif"), "--formats", "png,gif"])
+check(p.returncode == 2 and "gif not supported" in p.stderr
+      and not os.path.exists(os.path.join(scratch, "plots_gif")),
+      "plot --formats gif: exit 2 before any figure (%s)" % p.stderr.strip()[-200:])
+p = run(["plot", base, "--out", os.path.join(base, "plots")])  # a folder under a file
+check(p.returncode == 5 and "cannot create the folder" in p.stderr,
+      "plot into a folder under a file: exit 5 (%s)" % p.stderr.strip()[-200:])
 
 print("%d failure(s)" % len(failures))
 sys.exit(1 if failures else 0)
