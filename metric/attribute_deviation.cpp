@@ -377,6 +377,15 @@ double deviation_bytes_per_sample(const std::vector<Measure>& measures,
                              (cohen ? sizeof(std::uint8_t) + sizeof(double) : 0));
 }
 
+void check_deviations_fit_in_memory(std::size_t samples, const std::vector<Measure>& measures,
+                                    const DeviationOptions& options,
+                                    double extra_bytes_per_sample) {
+  check_fits_in_memory(static_cast<double>(samples) *
+                           (deviation_bytes_per_sample(measures, options) + extra_bytes_per_sample),
+                       "the deviations of " + std::to_string(samples) + " samples",
+                       "use fewer samples or a larger sampling step");
+}
+
 QueryHint sample_hint(const TriMesh& reference, const Sample& s) {
   QueryHint hint;
   if (s.face == kNoFace) return hint;
@@ -412,10 +421,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     if (measures[m].kind == MeasureKind::kCohenTexture) cohen.push_back(m);
     if (is_texture_color(measures[m].kind)) texture.push_back(m);
   }
-  // Refused before any of it is allocated where it cannot fit.
-  check_fits_in_memory(static_cast<double>(n) * deviation_bytes_per_sample(measures, options),
-                       "the deviations of " + std::to_string(n) + " samples",
-                       "use fewer samples or a larger sampling step");
+  check_deviations_fit_in_memory(n, measures, options);  // before any of it is allocated
   FormSet texture_forms;
   for (std::size_t m : texture) texture_forms.add(measures[m].kind);
   const AttributeChannel* uv_ref = reference.channel("texcoord");

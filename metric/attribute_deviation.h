@@ -64,11 +64,19 @@ QueryHint sample_hint(const TriMesh& reference, const Sample& s);
 double deviation_bytes_per_sample(const std::vector<Measure>& measures,
                                   const DeviationOptions& options);
 
+// Throws InvalidInput (check_fits_in_memory, metric/memory_limit.h) where `samples` times
+// deviation_bytes_per_sample plus `extra_bytes_per_sample` (a caller's own per-sample arrays,
+// e.g. compare's weights) exceed the memory available: compute_deviations makes this check
+// with no extra, a caller may make it earlier, before building the index. O(measures).
+void check_deviations_fit_in_memory(std::size_t samples, const std::vector<Measure>& measures,
+                                    const DeviationOptions& options,
+                                    double extra_bytes_per_sample = 0.0);
+
 // Deviation of each sample of `reference` against `target` (whose index is `index`), for every
 // measure of `measures` (measure 0 must be geometry). Units: those of each measure (absolute).
 // Results do not depend on the thread count: each sample's result depends only on the sample.
-// Throws InvalidInput, before anything is allocated or queried, where the samples times
-// deviation_bytes_per_sample exceed the memory available (metric/memory_limit.h).
+// Throws InvalidInput, before anything is allocated or queried, where the samples' results
+// cannot fit (check_deviations_fit_in_memory).
 // O(samples x query cost x (1 + ties x attribute dims)).
 SampleDeviations compute_deviations(const SampleSet& samples, const PreparedMesh& reference,
                                     const PreparedMesh& target, const NearestPointIndex& index,

@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "metric/errors.h"
-#include "metric/memory_limit.h"
 
 namespace meshdev {
 namespace {
@@ -67,11 +66,8 @@ DirectionResult run_direction(const PreparedMesh& from, const PreparedMesh& to,
   DeviationOptions deviation_options;
   deviation_options.threads = o.threads;
   deviation_options.keep_nearest = o.keep_samples;
-  check_fits_in_memory(static_cast<double>(r.samples) *
-                           (deviation_bytes_per_sample(measures, deviation_options) +
-                            (equal_weight > 0.0 ? 0.0 : static_cast<double>(sizeof(double)))),
-                       "the deviations of " + std::to_string(r.samples) + " samples",
-                       "use fewer samples or a larger sampling step");
+  check_deviations_fit_in_memory(r.samples, measures, deviation_options,
+                                 equal_weight > 0.0 ? 0.0 : static_cast<double>(sizeof(double)));
 
   t0 = Clock::now();
   std::unique_ptr<NearestPointIndex> local_index;

@@ -29,6 +29,11 @@ unsigned long long cgroup_bytes(const char* file) {
   return in >> bytes ? bytes : 0;
 }
 
+// The one test behind fits_in_memory and check_fits_in_memory (0: unknown, anything fits).
+bool fits(double bytes, std::size_t available) {
+  return available == 0 || !(bytes > static_cast<double>(available));
+}
+
 }  // namespace
 
 std::size_t available_memory_bytes() {
@@ -48,9 +53,13 @@ std::size_t available_memory_bytes() {
   return bytes;
 }
 
+bool fits_in_memory(double bytes) {
+  return fits(bytes, available_memory_bytes());
+}
+
 void check_fits_in_memory(double bytes, const std::string& what, const std::string& advice) {
   const std::size_t available = available_memory_bytes();
-  if (available == 0 || !(bytes > static_cast<double>(available))) return;
+  if (fits(bytes, available)) return;
   constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
   std::ostringstream m;
   m.precision(3);

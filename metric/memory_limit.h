@@ -15,6 +15,9 @@ namespace meshdev {
 // to call. O(1) (reads three small files).
 std::size_t available_memory_bytes();
 
+// Whether `bytes` fit in available_memory_bytes() (true where that is unknown). O(1).
+bool fits_in_memory(double bytes);
+
 // Throws InvalidInput "<what> need about X GiB, more than the Y GiB of memory available here;
 // <advice>" if `bytes` (an estimate, as a double so that an absurd request cannot overflow it)
 // exceeds available_memory_bytes(); does nothing where that is unknown. O(1).

@@ -17,6 +17,7 @@ TEST(MemoryLimit, AvailableMemoryIsKnownAndARequestWithinItFits) {
   ASSERT_GT(available, std::size_t{1} << 20);
   EXPECT_LE(available, static_cast<std::size_t>(sysconf(_SC_PHYS_PAGES)) *
                            static_cast<std::size_t>(sysconf(_SC_PAGE_SIZE)));
+  EXPECT_TRUE(fits_in_memory(1.0));
   EXPECT_NO_THROW(check_fits_in_memory(1.0, "one byte", "-"));
   EXPECT_NO_THROW(check_fits_in_memory(0.5 * static_cast<double>(available), "half of it", "-"));
 }
@@ -35,6 +36,7 @@ TEST(MemoryLimit, ARequestBeyondItIsRefusedWithWhatItNeeds) {
     EXPECT_NE(m.find(" GiB of memory available here"), std::string::npos) << m;
     EXPECT_NE(m.find("; ask for fewer widgets"), std::string::npos) << m;
   }
+  EXPECT_FALSE(fits_in_memory(2.0 * available));
   EXPECT_THROW(check_fits_in_memory(1e300, "x", "y"), InvalidInput);
 }
 

@@ -525,8 +525,7 @@ TEST(Sampling, ATargetBeyondTheLimitIsRefusedWithThatReason) {
 // what it needs (vertices and 2^31 Monte Carlo samples: 72 bytes each, about 144 GiB).
 TEST(Sampling, ASampleSetBeyondTheMemoryIsRefusedBeforeItIsMade) {
   const double needed = std::ldexp(1.0, 31) * sizeof(Sample);
-  if (available_memory_bytes() == 0 || static_cast<double>(available_memory_bytes()) >= needed)
-    GTEST_SKIP() << "this machine has room for 2^31 samples";
+  if (fits_in_memory(needed)) GTEST_SKIP() << "this machine has room for 2^31 samples";
   SamplingOptions o;
   o.vertices = true;
   o.faces = FaceSampling::kMonteCarlo;
