@@ -59,20 +59,11 @@ struct TriangleFrame {
   return t;
 }
 
-// The corners with their frame: callers that test many points against one triangle compute it
-// once. O(1).
-struct TriangleSetup : TriangleFrame {
-  Vec3 a, b, c;
-};
-inline TriangleSetup triangle_setup(const Vec3& a, const Vec3& b, const Vec3& c) {
-  return {triangle_frame(a, b, c), a, b, c};
-}
-
 // closest_point_on_triangle(p, a, b, c) below, from the corners and their frame
 // (triangle_frame(a, b, c)): bit for bit the same (the same operations on the same values). The
 // corners are read where they are (a mesh's positions), so only the frame need be held in
 // registers. Always inlined: GCC 12 kept it out of line (1.1M calls for 1M queries on torus100k
-// -> torus1m), the call returned the hit through memory, and a setup passed to it was first
+// -> torus1m), the call returned the hit through memory, and a frame passed to it was first
 // copied to the stack (an exact test took 420 instructions in the face region, 348 inlined
 // without the copy; docs/performance-log.md §3).
 [[gnu::always_inline]] inline TriangleHit closest_point_on_triangle(const Vec3& p, const Vec3& a,
@@ -121,12 +112,6 @@ inline TriangleSetup triangle_setup(const Vec3& a, const Vec3& b, const Vec3& c)
   const double v = vb * denom, w = vc * denom;
   const double h = dot(ap, n);
   return detail::make_hit(a + v * ab + w * ac, h * h / n2, 1.0 - v - w, v, w);
-}
-
-// The same from the triangle's setup.
-[[gnu::always_inline]] inline TriangleHit closest_point_on_triangle(const Vec3& p,
-                                                                    const TriangleSetup& t) {
-  return closest_point_on_triangle(p, t.a, t.b, t.c, t);
 }
 
 // Closest point to p on triangle (a, b, c) by the Voronoi-region walk of Ericson, "Real-Time

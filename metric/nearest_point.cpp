@@ -9,7 +9,9 @@
 #include <limits>
 
 #include "metric/errors.h"
+#include "metric/face_interior_x4.h"
 #include "metric/nearest_point_brute.h"
+#include "metric/plane_bounds.h"
 #include "metric/triangle_bvh.h"
 #include "metric/triangle_grid.h"
 
@@ -108,6 +110,9 @@ FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with
   }
   const double reach = 1e-9 * diag + 1e-14 * magnitude;
   exact_check_sq = reach * reach;
+#if defined(MESHDEV_X86_KERNELS)
+  x4 = simd_level() != SimdLevel::kBaseline;
+#endif
   if (!with_spheres) return;
   spheres.resize(m.faces.size());
   for (std::size_t f = 0; f < m.faces.size(); ++f) {
@@ -144,10 +149,9 @@ namespace {
   s.feature = zeros >= 2 ? Feature::kVertex : (zeros == 1 ? Feature::kEdge : Feature::kFace);
 }
 
-// Both overloads of FaceEvaluator::evaluate, inlined into each: the corners are read from the
-// mesh (or the setup) in place and the closest point inlined, so an exact test makes no call
-// and no copy of the triangle (420 -> 348 instructions in the face region, docs/performance-log.md
-// §3).
+// FaceEvaluator::evaluate: the corners are read from the mesh in place and the closest point
+// inlined, so an exact test makes no call and no copy of the triangle (420 -> 348 instructions in
+// the face region, docs/performance-log.md §3).
 [[gnu::always_inline]] inline SurfaceHit evaluate_face(const FaceEvaluator& eval, const Vec3& p,
                                                        std::uint32_t face, const Vec3& a,
                                                        const Vec3& b, const Vec3& c,
@@ -168,9 +172,33 @@ SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const Quer
   return evaluate_face(*this, p, face, a, b, c, triangle_frame(a, b, c), hint);
 }
 
-SurfaceHit FaceEvaluator::evaluate(const Vec3& p, std::uint32_t face, const TriangleSetup& triangle,
-                                   const QueryHint& hint) const {
-  return evaluate_face(*this, p, face, triangle.a, triangle.b, triangle.c, triangle, hint);
+void FaceEvaluator::evaluate_x4(const Vec3* const p[4], const std::uint32_t face[4],
+                                const QueryHint* const hint[4], int lanes,
+                                SurfaceHit* const out[4]) const {
+  unsigned done = 0;
+#if defined(MESHDEV_X86_KERNELS)
+  if (x4 && lanes > 1) {
+    const Vec3 *q[4], *a[4], *b[4], *c[4];
+    SurfaceHit* o[4];
+    for (int l = 0; l < 4; ++l) {  // lanes past the last repeat the first
+      const int from = l < lanes ? l : 0;
+      const Triangle& t = mesh->faces[face[from]];
+      q[l] = p[from];
+      a[l] = &mesh->positions[t[0]];
+      b[l] = &mesh->positions[t[1]];
+      c[l] = &mesh->positions[t[2]];
+      o[l] = out[from];
+    }
+    done = face_interior_x4(q, a, b, c, o) & ((1u << lanes) - 1u);
+    for (int l = 0; l < lanes; ++l) {
+      out[l]->face = face[l];
+      if ((done >> l & 1u) != 0 && hint[l]->has_source() && out[l]->sq_distance <= exact_check_sq)
+        apply_identical_triangle(*p[l], *a[l], *b[l], *c[l], *hint[l], *out[l]);
+    }
+  }
+#endif
+  for (int l = 0; l < lanes; ++l)
+    if ((done >> l & 1u) == 0) *out[l] = evaluate(*p[l], face[l], *hint[l]);
 }
 
 double FaceEvaluator::limit_sq(double best_sq) const {

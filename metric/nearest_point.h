@@ -150,20 +150,18 @@ struct FaceEvaluator {
     float radius;
   };
   std::vector<Sphere> spheres;
+  bool x4 = false;  // evaluate_x4 may use face_interior_x4 (the CPU runs AVX2)
 
   // threads: OpenMP threads for the passes over the mesh (0 = OpenMP's default). Throws
   // InvalidInput for tie tolerances that are negative or not finite (TieOptions).
   FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true,
                 int threads = 0);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
-  // The same from the setup of the face's triangle (setup(face)), for callers that test many
-  // points against one face: the same hit, bit for bit.
-  SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const TriangleSetup& triangle,
-                      const QueryHint& hint) const;
-  TriangleSetup setup(std::uint32_t face) const {
-    const Triangle& t = mesh->faces[face];
-    return triangle_setup(mesh->positions[t[0]], mesh->positions[t[1]], mesh->positions[t[2]]);
-  }
+  // evaluate(*p[l], face[l], *hint[l]) for the lanes l < lanes (1 <= lanes <= 4) into *out[l], bit
+  // for bit: the face regions four at a time where the CPU runs AVX2 (face_interior_x4), the other
+  // lanes one by one. O(lanes).
+  void evaluate_x4(const Vec3* const p[4], const std::uint32_t face[4],
+                   const QueryHint* const hint[4], int lanes, SurfaceHit* const out[4]) const;
   // Tie limit (not squared) for a minimum distance `best` (not squared).
   double limit(double best) const { return best * (1.0 + tie_relative) + tie_absolute; }
   // Squared tie limit for a minimum squared distance: limit(sqrt(best_sq))^2.

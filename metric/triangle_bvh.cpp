@@ -1132,13 +1132,9 @@ struct TriangleBvh::PacketScratch {
   std::uint32_t block[kMaxBlocks + 4];  // + 4: gather_blocks writes a node's four children
   alignas(16) float block_lo[3][kMaxBlocks + 4];
   alignas(16) float block_hi[3][kMaxBlocks + 4];
-  std::size_t misses = 0;  // queries of the last packet farther from B than its guess
-  bool sparse = false;     // the last packet of faces was sparse (find_packet)
-  // The face the last dense packet's query evaluated first, and the face whose triangle's setup
-  // is kept (both reset per batch; sparse packets neither read nor change them).
-  std::uint32_t seen_face = kNoFace;
-  std::uint32_t setup_face = kNoFace;
-  TriangleSetup setup;
+  std::size_t misses = 0;          // queries of the last packet farther from B than its guess
+  bool sparse = false;             // the last packet of faces was sparse (find_packet)
+  SurfaceHit firsts[kPacketSize];  // find_packet: each query's exact test of its first face
 };
 
 void TriangleBvh::compute_block_planes(std::uint32_t block, BlockPlanes& out) const {
@@ -1179,7 +1175,6 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     scratch.cache.clear();
     scratch.cache_owner = id_;
   }
-  scratch.seen_face = scratch.setup_face = kNoFace;
   std::uint32_t previous = kNoFace;
   // The largest distance of the last query or packet answered, faded in with the earlier ones
   // (kGuessDecay; -1: none).
@@ -1529,85 +1524,112 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // float, three products and sums; fewer roundings where the kernel fuses multiply-adds) plus
   // 1e-9 (|p|_1 + 2) from the double computation of normals of faces with kappa <= kMaxKappa:
   // the margin 16 u (|p|_1 + max offset + 2) covers both with room.
+  // In three passes over the packet's queries. First each query's bounds (sparse packets: of the
+  // blocks it selects) give its candidate of smallest bound and the runner-up; then those first
+  // candidates are tested exactly, four queries at a time (FaceEvaluator::evaluate_x4: AVX2 lanes
+  // where the closest point lies in the face's interior, as it mostly does); then each query
+  // ends as before. Its selection and bounds are computed again, the same, for the few queries
+  // whose runner-up lies within the cutoff. Against the exact test query by query
+  // (chunk-interleaved, 1 and 2 threads: torus100k -> 1m +6-10 %, torus1m -> 100k +17 %,
+  // torus100k -> 10k +10-16 %, armadillo +11 %, buildings +3-8 %; docs/performance-log.md §3).
+  auto select_blocks = [&](std::size_t k) -> std::size_t {
+    const float* qf = scratch.qf[k];
+    const F4 pf[3] = {F4::splat(qf[0]), F4::splat(qf[1]), F4::splat(qf[2])};
+    const F4 box_cut =
+        F4::splat(round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5)));
+    std::size_t selected = 0;
+    for (std::size_t b = 0; b < padded; b += 4) {
+      F4 blo[3], bhi[3];
+      for (int a = 0; a < 3; ++a) {
+        blo[a] = F4::load(scratch.block_lo[a] + b);
+        bhi[a] = F4::load(scratch.block_hi[a] + b);
+      }
+      unsigned keep =
+          static_cast<unsigned>(~greater_mask(box_sq_distances_f4(blo, bhi, pf), box_cut)) & 0xfu;
+      if (blocks - b < 4) keep &= (1u << (blocks - b)) - 1u;  // padding lanes: never
+      for (std::size_t lane = 0; lane < 4; ++lane) {
+        which[selected] = static_cast<std::uint32_t>(b + lane);
+        which_rows[selected] = scratch.block_rows[b + lane];
+        selected += keep >> lane & 1u;
+      }
+    }
+    return selected;
+  };
+  auto bounds_of = [&](std::size_t k, std::size_t count) {  // count: of the selected blocks' lanes
+    return dense ? kernels_->bounds(scratch.rows.data(), stride, candidates, scratch.qf[k],
+                                    scratch.bound)
+                 : kernels_->block_bounds(which_rows, count / 4, scratch.qf[k], scratch.bound);
+  };
+  enum : std::uint8_t { kCentre, kInFull, kTested };
+  std::uint8_t status[kPacketSize];
+  std::uint32_t first_face[kPacketSize], first_idx[kPacketSize], counted[kPacketSize];
+  float runner_up[kPacketSize];
+  std::uint32_t tested[kPacketSize];
+  std::size_t n_tested = 0;
   for (std::size_t k = 0; k < n; ++k) {
-    if (k > 0 && out.hits.size() >= BatchHits::kMaxHits) return k;  // answered k of n
     if (k == c) {
-      append_answer(out, base + k, scratch.center_distance, scratch.center_ties);
+      status[k] = kCentre;
       continue;
     }
-    const float* qf = scratch.qf[k];
-    const QueryHint& hint = hint_of(k);
-    const Vec3& p = points[base + k];
-    std::vector<SurfaceHit>& ties = scratch.ties;
-    std::size_t count = candidates;  // bounds computed
-    if (!dense) {  // the blocks within the query's initial reach, as find() tests boxes
-      const F4 pf[3] = {F4::splat(qf[0]), F4::splat(qf[1]), F4::splat(qf[2])};
-      const F4 box_cut =
-          F4::splat(round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5)));
-      std::size_t selected = 0;
-      for (std::size_t b = 0; b < padded; b += 4) {
-        F4 blo[3], bhi[3];
-        for (int a = 0; a < 3; ++a) {
-          blo[a] = F4::load(scratch.block_lo[a] + b);
-          bhi[a] = F4::load(scratch.block_hi[a] + b);
-        }
-        // Without a branch per block: every lane is written and only those kept are counted.
-        // The kept lanes vary from query to query, and the loop over them that this replaced
-        // branched on each (cachegrind's branch model: 1.9 M mispredictions there for 1 M
-        // queries of torus100k -> 1m). Chunk-interleaved: torus100k -> 1m +4.0-4.7 %,
-        // torus1m -> 100k +1.3-2.2 %, the dense torus100k -> 10k unchanged (docs/performance-log.md
-        // §3).
-        unsigned keep =
-            static_cast<unsigned>(~greater_mask(box_sq_distances_f4(blo, bhi, pf), box_cut)) & 0xfu;
-        if (blocks - b < 4) keep &= (1u << (blocks - b)) - 1u;  // padding lanes: never
-        for (std::size_t lane = 0; lane < 4; ++lane) {
-          which[selected] = static_cast<std::uint32_t>(b + lane);
-          which_rows[selected] = scratch.block_rows[b + lane];
-          selected += keep >> lane & 1u;
-        }
-      }
+    std::size_t count = candidates;
+    if (!dense) {
+      const std::size_t selected = select_blocks(k);
       if (selected == 0) {  // none within the guessed reach
-        answer_in_full(points, base, k, hint, kNoFace, start_face, scratch, out);
+        status[k] = kInFull;
         continue;
       }
       count = 4 * selected;
     }
+    const LeastBounds least = bounds_of(k, count);
+    first_face[k] = face_at(least.first);
+    if (first_face[k] == kNoFace) {  // every bound +inf (only empty lanes)
+      status[k] = kInFull;
+      continue;
+    }
+    status[k] = kTested;
+    first_idx[k] = static_cast<std::uint32_t>(least.first);
+    counted[k] = static_cast<std::uint32_t>(count);
+    runner_up[k] = least.runner_up;
+    tested[n_tested++] = static_cast<std::uint32_t>(k);
+  }
+  // The faces of smallest bound, exactly, four queries at a time: each gives its query's tie
+  // limit, usually final.
+  for (std::size_t t = 0; t < n_tested; t += 4) {
+    const int lanes = static_cast<int>(std::min<std::size_t>(4, n_tested - t));
+    const Vec3* p4[4];
+    std::uint32_t f4[4];
+    const QueryHint* h4[4];
+    SurfaceHit* o4[4];
+    for (int l = 0; l < lanes; ++l) {
+      const std::size_t k = tested[t + static_cast<std::size_t>(l)];
+      p4[l] = &points[base + k];
+      f4[l] = first_face[k];
+      h4[l] = &hint_of(k);
+      o4[l] = &scratch.firsts[k];
+    }
+    eval_.evaluate_x4(p4, f4, h4, lanes, o4);
+  }
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0 && out.hits.size() >= BatchHits::kMaxHits) return k;  // answered k of n
+    const QueryHint& hint = hint_of(k);
+    if (status[k] == kCentre) {
+      append_answer(out, base + k, scratch.center_distance, scratch.center_ties);
+      continue;
+    }
+    if (status[k] == kInFull) {
+      answer_in_full(points, base, k, hint, kNoFace, start_face, scratch, out);
+      continue;
+    }
+    const float* qf = scratch.qf[k];
+    const Vec3& p = points[base + k];
+    std::vector<SurfaceHit>& ties = scratch.ties;
     const double margin =
         16.0 * kUnit * (std::fabs(qf[0]) + std::fabs(qf[1]) + std::fabs(qf[2]) + max_offset + 2.0);
     auto cutoff_of = [&](double r) {  // r: a reach
       return round_up_to_float((r + margin) * (r + margin) * (1.0 + 1e-5));
     };
-    // All bounds, the smallest and the runner-up (NaN bounds become 0: evaluated first, never
-    // culled).
-    const LeastBounds least =
-        dense ? kernels_->bounds(scratch.rows.data(), stride, candidates, qf, scratch.bound)
-              : kernels_->block_bounds(which_rows, count / 4, qf, scratch.bound);
-    const std::size_t first_idx = least.first;
-
-    // The face of smallest bound first: its exact distance gives the tie limit, usually final.
-    const std::uint32_t first_face = face_at(first_idx);
-    if (first_face == kNoFace) {  // every bound +inf (only empty lanes)
-      answer_in_full(points, base, k, hint, kNoFace, start_face, scratch, out);
-      continue;
-    }
-    // Where samples are dense on B, consecutive queries mostly share that face: its triangle's
-    // setup is kept from the second query in a row that evaluates it first. Sparse packets do
-    // without: there consecutive queries share their first face now and then, so the two
-    // branches on it went either way and a setup was rarely used a third time (chunk-interleaved,
-    // 1 and 2 threads: torus100k -> 1m +3.1-3.7 %, the other pairs -0.5 to +1.2 %;
-    // docs/performance-log.md §3).
-    SurfaceHit first;
-    if (dense) {
-      if (first_face != scratch.setup_face && first_face == scratch.seen_face) {
-        scratch.setup = eval_.setup(first_face);
-        scratch.setup_face = first_face;
-      }
-      scratch.seen_face = first_face;
-      first = first_face == scratch.setup_face ? eval_.evaluate(p, first_face, scratch.setup, hint)
-                                               : eval_.evaluate(p, first_face, hint);
-    } else {
-      first = eval_.evaluate(p, first_face, hint);
-    }
+    // The first face's answer gives the tie limit, usually final.
+    const SurfaceHit& first = scratch.firsts[k];
     double best_sq = first.sq_distance, best = std::sqrt(best_sq);
     double limit = eval_.limit(best), limit_sq = limit * limit;  // = eval_.limit_sq(best_sq)
     float cutoff = cutoff_of(std::min(initial_reach[k], reach(k, limit)));
@@ -1615,9 +1637,13 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     // without the scan for survivors and its branches on the bounds (chunk-interleaved, 1 and 2
     // threads: torus100k -> 1m +1.6-1.8 %, torus1m -> 100k +2.0-2.4 %, torus100k -> 10k
     // +1.5-2.2 %, armadillo +0.9-1.3 %, buildings -0.6 to +0.1 %; docs/performance-log.md §3).
-    std::size_t left = least.runner_up > cutoff ? 0
-                                                : kernels_->survivors(scratch.bound, count, cutoff,
-                                                                      first_idx, scratch.survivors);
+    std::size_t left = 0;
+    if (!(runner_up[k] > cutoff)) {
+      if (!dense) select_blocks(k);
+      bounds_of(k, counted[k]);
+      left =
+          kernels_->survivors(scratch.bound, counted[k], cutoff, first_idx[k], scratch.survivors);
+    }
     if (left == 0) {
       // The first face alone, as most queries end: its answer goes straight into the batch, as
       // keep_ties and append_answer would leave it, without the tie list, keep_ties' call and the

@@ -311,6 +311,57 @@ TEST(NearestPoint, SourceHintMakesASampleOnAnIdenticalTriangleExactlyZero) {
   EXPECT_EQ(ties[0].bary, hint.source_bary);
 }
 
+// FaceEvaluator::evaluate_x4 against evaluate, bit for bit, for 1 to 4 lanes: faces of a soup
+// with degenerate triangles and of a sphere, points near them (over their interiors, beyond their
+// edges, on their corners) and far away, half of them with their face as the source-triangle hint
+// (the identical-triangle rule).
+TEST(NearestPoint, FourLaneEvaluationEqualsTheOneByOneEvaluation) {
+  for (const TriMesh& m : {test::random_soup(200, 41, 0.2), test::icosphere(2)}) {
+    const detail::FaceEvaluator eval(m, TieOptions{});
+    std::mt19937_64 rng(43);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
+    std::uniform_int_distribution<std::uint32_t> any_face(
+        0, static_cast<std::uint32_t>(m.faces.size() - 1));
+    for (int round = 0; round < 4000; ++round) {
+      const int lanes = 1 + round % 4;
+      Vec3 p[4], corners[4][3];
+      std::uint32_t face[4];
+      QueryHint hint[4];
+      for (int l = 0; l < lanes; ++l) {
+        face[l] = any_face(rng);
+        const Triangle& t = m.faces[face[l]];
+        for (int k = 0; k < 3; ++k) corners[l][k] = m.positions[t[k]];
+        const double v = 1.5 * unit(rng) - 0.25, w = (1.0 - v) * unit(rng);
+        const double bary[3] = {1.0 - v - w, v, w};
+        p[l] = bary[0] * corners[l][0] + bary[1] * corners[l][1] + bary[2] * corners[l][2];
+        if (round % 5 == 1) p[l] = p[l] + 0.05 * Vec3{u(rng), u(rng), u(rng)};
+        if (round % 11 == 2) p[l] = corners[l][l % 3];
+        if (round % 13 == 3) p[l] = 100.0 * Vec3{u(rng), u(rng), u(rng)};
+        if ((round + l) % 2 == 0) {
+          hint[l].source = corners[l];
+          hint[l].source_bary = {bary[0], bary[1], bary[2]};
+        }
+      }
+      const Vec3* pp[4];
+      const QueryHint* ph[4];
+      SurfaceHit hits[4];
+      SurfaceHit* out[4];
+      for (int l = 0; l < 4; ++l) {
+        pp[l] = &p[l];
+        ph[l] = &hint[l];
+        out[l] = &hits[l];
+      }
+      eval.evaluate_x4(pp, face, ph, lanes, out);
+      for (int l = 0; l < lanes; ++l) {
+        SCOPED_TRACE(testing::Message() << "round " << round << ", lane " << l);
+        expect_same({hits[l]}, {eval.evaluate(p[l], face[l], hint[l])});
+        EXPECT_EQ(hits[l].point, eval.evaluate(p[l], face[l], hint[l]).point);
+        if (HasFailure()) return;
+      }
+    }
+  }
+}
+
 // Query streams for the batch tests, coherent as samples are: runs of 32 points on one face of
 // `m` (random barycentrics), then pushed off it by `offset` (0: on the surface) in a random
 // direction; one in 10 is exactly at a corner of the face; every 7th run is scattered over the
