@@ -29,6 +29,18 @@ float runner_up_of(__m256 least, __m256 second, __m256 smallest) {
   return _mm256_cvtss_f32(broadcast_min(_mm256_blendv_ps(least, second, pick)));
 }
 
+// The index of the smallest bound, the first of equal ones: each lane tracked the index of its
+// first least bound (least_at), and the least of those indices among the lanes whose least is the
+// smallest is the first overall. Without a loop or a branch on the bounds.
+std::size_t first_of(__m256 least, __m256i least_at, __m256 smallest) {
+  const __m256i equal = _mm256_castps_si256(_mm256_cmp_ps(least, smallest, _CMP_EQ_OQ));
+  __m256i at = _mm256_blendv_epi8(_mm256_set1_epi32(0x7fffffff), least_at, equal);
+  at = _mm256_min_epu32(at, _mm256_permute2x128_si256(at, at, 1));
+  at = _mm256_min_epu32(at, _mm256_shuffle_epi32(at, 0x4e));
+  at = _mm256_min_epu32(at, _mm256_shuffle_epi32(at, 0xb1));
+  return static_cast<std::size_t>(_mm256_cvtsi256_si32(at));
+}
+
 // Each lane keeps its two smallest bounds (second = min(second, max(least, b)) before least =
 // min(least, b)) for the runner-up.
 LeastBounds bounds_avx2(const float* rows, std::size_t stride, std::size_t count, const float q[3],
@@ -36,6 +48,7 @@ LeastBounds bounds_avx2(const float* rows, std::size_t stride, std::size_t count
   const __m256 px = _mm256_set1_ps(q[0]), py = _mm256_set1_ps(q[1]), pz = _mm256_set1_ps(q[2]);
   const __m256 zero = _mm256_setzero_ps();
   __m256 least = _mm256_set1_ps(__builtin_inff()), second = least;
+  __m256i least_at = _mm256_setzero_si256(), at = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   const std::size_t lanes = (count + 7) & ~std::size_t{7};
   for (std::size_t i = 0; i < lanes; i += 8) {
     auto plane = [&](int r) {  // (n.p - d) with one rounding per coordinate
@@ -50,21 +63,15 @@ LeastBounds bounds_avx2(const float* rows, std::size_t stride, std::size_t count
     // NaN -> 0: max returns its second operand when either is NaN.
     const __m256 b2 = _mm256_max_ps(_mm256_fmadd_ps(h, h, _mm256_mul_ps(o, o)), zero);
     second = _mm256_min_ps(second, _mm256_max_ps(least, b2));
+    least_at =
+        _mm256_blendv_epi8(least_at, at, _mm256_castps_si256(_mm256_cmp_ps(b2, least, _CMP_LT_OQ)));
+    at = _mm256_add_epi32(at, _mm256_set1_epi32(8));
     least = _mm256_min_ps(b2, least);
     _mm256_storeu_ps(bound + i, b2);
   }
   const __m256 smallest = broadcast_min(least);
   const float runner_up = runner_up_of(least, second, smallest);
-  for (std::size_t i = 0; i < lanes; i += 8) {
-    const int equal =
-        _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(bound + i), smallest, _CMP_EQ_OQ));
-    if (equal != 0) {
-      const std::size_t first =
-          i + static_cast<unsigned>(__builtin_ctz(static_cast<unsigned>(equal)));
-      return {first < count ? first : 0, runner_up};
-    }
-  }
-  return {0, runner_up};
+  return {first_of(least, least_at, smallest), runner_up};
 }
 
 std::size_t survivors_avx2(const float* bound, std::size_t count, float cutoff, std::size_t skip,
@@ -101,6 +108,7 @@ LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t coun
   const __m256 zero = _mm256_setzero_ps();
   const __m256 inf = _mm256_set1_ps(__builtin_inff());
   __m256 least = inf, second = inf;
+  __m256i least_at = _mm256_setzero_si256(), at = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   for (std::size_t j = 0; j < count; j += 2) {
     const bool pair = j + 1 < count;
     const BlockPlanes& a = *blocks[j];
@@ -118,20 +126,14 @@ LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t coun
     _mm256_storeu_ps(bound + 4 * j, b2);  // an odd last block: its copy in the upper half
     const __m256 kept = pair ? b2 : _mm256_blend_ps(b2, inf, 0xf0);  // ... not counted twice
     second = _mm256_min_ps(second, _mm256_max_ps(least, kept));
+    least_at = _mm256_blendv_epi8(least_at, at,
+                                  _mm256_castps_si256(_mm256_cmp_ps(kept, least, _CMP_LT_OQ)));
+    at = _mm256_add_epi32(at, _mm256_set1_epi32(8));
     least = _mm256_min_ps(kept, least);
   }
   const __m256 smallest = broadcast_min(least);
   const float runner_up = runner_up_of(least, second, smallest);
-  for (std::size_t i = 0; i < 4 * count; i += 8) {
-    const int equal =
-        _mm256_movemask_ps(_mm256_cmp_ps(_mm256_loadu_ps(bound + i), smallest, _CMP_EQ_OQ));
-    if (equal != 0) {
-      const std::size_t first =
-          i + static_cast<unsigned>(__builtin_ctz(static_cast<unsigned>(equal)));
-      return {first < 4 * count ? first : 0, runner_up};
-    }
-  }
-  return {0, runner_up};
+  return {first_of(least, least_at, smallest), runner_up};
 }
 
 }  // namespace detail
