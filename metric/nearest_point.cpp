@@ -190,15 +190,26 @@ void FaceEvaluator::evaluate_x4(const Vec3* const p[4], const std::uint32_t face
       o[l] = out[from];
     }
     done = face_interior_x4(q, a, b, c, o) & ((1u << lanes) - 1u);
-    for (int l = 0; l < lanes; ++l) {
-      out[l]->face = face[l];
-      if ((done >> l & 1u) != 0 && hint[l]->has_source() && out[l]->sq_distance <= exact_check_sq)
+    // Without a branch per lane: the faces written to every lane (those past the last repeat
+    // the first), then only the lanes close enough for the identical-triangle rule, and those
+    // left to the walk (chunk-interleaved, 1 and 2 threads: +0.3 to +1.1 % on the torus pairs;
+    // docs/performance-log.md §3).
+    unsigned near = 0;
+    for (int l = 0; l < 4; ++l) {
+      o[l]->face = face[l < lanes ? l : 0];
+      near |= static_cast<unsigned>(o[l]->sq_distance <= exact_check_sq) << l;
+    }
+    for (near &= done; near != 0; near &= near - 1) {
+      const int l = __builtin_ctz(near);
+      if (hint[l]->has_source())
         apply_identical_triangle(*p[l], *a[l], *b[l], *c[l], *hint[l], *out[l]);
     }
   }
 #endif
-  for (int l = 0; l < lanes; ++l)
-    if ((done >> l & 1u) == 0) *out[l] = evaluate(*p[l], face[l], *hint[l]);
+  for (unsigned rest = ~done & ((1u << lanes) - 1u); rest != 0; rest &= rest - 1) {
+    const int l = __builtin_ctz(rest);
+    *out[l] = evaluate(*p[l], face[l], *hint[l]);
+  }
 }
 
 double FaceEvaluator::limit_sq(double best_sq) const {
