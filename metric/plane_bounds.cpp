@@ -92,13 +92,13 @@ std::size_t survivors_baseline(const float* bound, std::size_t count, float cuto
 }
 
 // bounds_baseline's arithmetic on each block's own rows, four lanes (one block) at a time.
-LeastBounds block_bounds_baseline(const BlockPlanes* const* blocks, std::size_t count,
-                                  const float q[3], float* bound) {
+LeastBounds block_bounds_baseline(const BlockPlanes* const* blocks, const std::uint8_t* which,
+                                  std::size_t count, const float q[3], float* bound) {
   const F4 px = F4::splat(q[0]), py = F4::splat(q[1]), pz = F4::splat(q[2]);
   const F4 zero = F4::splat(0.0f);
   F4 least = F4::splat(kInf), second = least;
   for (std::size_t j = 0; j < count; ++j) {
-    const BlockPlanes& b = *blocks[j];
+    const BlockPlanes& b = *blocks[which[j]];
     auto plane = [&](int r) {  // row r..r+2: a unit normal, r+3: its offset
       return F4::load(b.row[r]) * px + F4::load(b.row[r + 1]) * py + F4::load(b.row[r + 2]) * pz -
              F4::load(b.row[r + 3]);

@@ -59,14 +59,14 @@ struct PlaneKernels {
   // order, and returns how many. bound: as written by `bounds` of the same kernels. O(count).
   std::size_t (*survivors)(const float* bound, std::size_t count, float cutoff, std::size_t skip,
                            std::uint32_t* out);
-  // bound[4 j + lane] for the four lanes of *blocks[j], j < count: the bound of `bounds` above,
-  // read from each block's own rows (a packet's blocks, no per-packet rows), bit for bit what
-  // `bounds` of the same kernels gives for the same coefficients. Returns the smallest's index
-  // 4 j + lane and the runner-up among the 4 count bounds (LeastBounds). `bound` must have room
-  // for 4 count rounded up to kPlaneLanes floats (`survivors` reads that far).
+  // bound[4 j + lane] for the four lanes of *blocks[which[j]], j < count: the bound of `bounds`
+  // above, read from each block's own rows (a packet's blocks, no per-packet rows), bit for bit
+  // what `bounds` of the same kernels gives for the same coefficients. Returns the smallest's
+  // index 4 j + lane and the runner-up among the 4 count bounds (LeastBounds). `bound` must have
+  // room for 4 count rounded up to kPlaneLanes floats (`survivors` reads that far).
   // Preconditions: count > 0; q finite. O(count).
-  LeastBounds (*block_bounds)(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
-                              float* bound);
+  LeastBounds (*block_bounds)(const BlockPlanes* const* blocks, const std::uint8_t* which,
+                              std::size_t count, const float q[3], float* bound);
   // The planes of the four triangles whose corners are corner[corner][axis][lane] (float frame):
   // the normal n = ab x ac made unit, d = n.a, and per edge e (a->b, b->c, c->a) the unit
   // m_e = e x n and md_e = m_e.(its first corner); all in double, four lanes at once where the
@@ -95,8 +95,8 @@ extern const PlaneKernels kPlaneKernelsAvx512;
 // The AVX2 + FMA block planes and block bounds, which the AVX-512 kernels share (every AVX-512F
 // CPU has both).
 void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out);
-LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
-                              float* bound);
+LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, const std::uint8_t* which,
+                              std::size_t count, const float q[3], float* bound);
 }  // namespace detail
 
 }  // namespace meshdev

@@ -102,8 +102,8 @@ inline __m256 pair_row(const BlockPlanes& a, const BlockPlanes& b, int r) {
 
 namespace detail {
 
-LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t count, const float q[3],
-                              float* bound) {
+LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, const std::uint8_t* which,
+                              std::size_t count, const float q[3], float* bound) {
   const __m256 px = _mm256_set1_ps(q[0]), py = _mm256_set1_ps(q[1]), pz = _mm256_set1_ps(q[2]);
   const __m256 zero = _mm256_setzero_ps();
   const __m256 inf = _mm256_set1_ps(__builtin_inff());
@@ -111,8 +111,8 @@ LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, std::size_t coun
   __m256i least_at = _mm256_setzero_si256(), at = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
   for (std::size_t j = 0; j < count; j += 2) {
     const bool pair = j + 1 < count;
-    const BlockPlanes& a = *blocks[j];
-    const BlockPlanes& b = pair ? *blocks[j + 1] : a;
+    const BlockPlanes& a = *blocks[which[j]];
+    const BlockPlanes& b = *blocks[which[pair ? j + 1 : j]];  // an odd last block: a again
     auto plane = [&](int r) {  // (n.p - d) with one rounding per coordinate
       const __m256 t = _mm256_fmsub_ps(pair_row(a, b, r), px, pair_row(a, b, r + 3));
       return _mm256_fmadd_ps(pair_row(a, b, r + 2), pz,

@@ -204,10 +204,11 @@ TEST(PlaneBounds, BlockBoundsEqualTheRowBoundsBitForBit) {
         std::shuffle(which.begin(), which.end(), rng);
         which.resize(1 + rng() % blocks);
         if (trial % 4 == 0) which.push_back(which.front());  // a block twice: its bounds tie
-        std::vector<const BlockPlanes*> chosen;
-        for (std::uint32_t b : which) chosen.push_back(&planes[b]);
+        std::vector<const BlockPlanes*> all;
+        for (const BlockPlanes& b : planes) all.push_back(&b);
+        const std::vector<std::uint8_t> chosen(which.begin(), which.end());
         const LeastBounds least_bounds =
-            k.block_bounds(chosen.data(), chosen.size(), q, by_blocks.data());
+            k.block_bounds(all.data(), chosen.data(), chosen.size(), q, by_blocks.data());
         const std::size_t first = least_bounds.first;
         std::size_t least = 0;
         for (std::size_t j = 0; j < which.size(); ++j)
