@@ -156,7 +156,7 @@ void block_planes_baseline(const float corner[3][3][4], BlockPlanes& out) {
     for (int e = 0; e < 3; ++e) {
       double edge[3], m[3];
       sub(v[(e + 1) % 3], v[e], edge);
-      cross(edge, unit, m);
+      cross(edge, n, m);  // e x n made unit: the same direction as e x unit
       const double inv_m = 1.0 / std::sqrt(dot(m, m));
       for (int a = 0; a < 3; ++a) m[a] *= inv_m;
       const double md = dot(m, v[e]);

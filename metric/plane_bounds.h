@@ -69,8 +69,9 @@ struct PlaneKernels {
                               std::size_t count, const float q[3], float* bound);
   // The planes of the four triangles whose corners are corner[corner][axis][lane] (float frame):
   // the normal n = ab x ac made unit, d = n.a, and per edge e (a->b, b->c, c->a) the unit
-  // m_e = e x n and md_e = m_e.(its first corner); all in double, four lanes at once where the
-  // instruction set allows. Every variant rounds each double operation once or less (FMA), so
+  // m_e = e x n (computed as e x (ab x ac), then made unit: the same direction) and md_e =
+  // m_e.(its first corner); all in double, four lanes at once where the instruction set
+  // allows. Every variant rounds each double operation once or less (FMA), so
   // the rows differ between them only in the last float bit, within the caller's margin (and,
   // for a triangle at one of the two limits above, in whether it is kept). O(1).
   void (*block_planes)(const float corner[3][3][4], BlockPlanes& out);

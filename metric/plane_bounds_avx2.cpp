@@ -183,6 +183,15 @@ void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out) {
                     _mm256_mul_pd(_mm256_set1_pd(kMaxCullKappa * kMaxCullKappa), n2), _CMP_LE_OQ));
   const __m256d one = _mm256_set1_pd(1.0);
   const __m256d sign = _mm256_set1_pd(-0.0);
+  // The edge normals from n itself (e x n, made unit), not from the unit normal: the four
+  // square roots and divisions do not wait for each other (chunk-interleaved, 1 and 2 threads:
+  // torus100k -> 1m +1.0 / +1.7 %, torus1m -> 100k +0.6 %; docs/performance-log.md §3).
+  D3 edge_normal[3];
+  __m256d edge_scale[3];
+  for (int e = 0; e < 3; ++e) {
+    edge_normal[e] = cross(sub(v[(e + 1) % 3], v[e]), n);
+    edge_scale[e] = _mm256_div_pd(one, _mm256_sqrt_pd(dot(edge_normal[e], edge_normal[e])));
+  }
   const D3 unit = scale(n, _mm256_div_pd(one, _mm256_sqrt_pd(n2)));
   const __m256d d = dot(unit, v[0]);
   __m256d max_offset = _mm256_andnot_pd(sign, d);
@@ -191,8 +200,7 @@ void block_planes_avx2(const float corner[3][3][4], BlockPlanes& out) {
   put(out.row[kNz], unit.z, keep);
   put(out.row[kD], d, keep);
   for (int e = 0; e < 3; ++e) {
-    const D3 m0 = cross(sub(v[(e + 1) % 3], v[e]), unit);
-    const D3 m = scale(m0, _mm256_div_pd(one, _mm256_sqrt_pd(dot(m0, m0))));
+    const D3 m = scale(edge_normal[e], edge_scale[e]);
     const __m256d md = dot(m, v[e]);
     put(out.row[kM0x + 4 * e], m.x, keep);
     put(out.row[kM0y + 4 * e], m.y, keep);
