@@ -55,6 +55,12 @@ __m256d both(__m256d a, __m256d b) {
 __m256d either(__m256d a, __m256d b) {
   return _mm256_or_pd(a, b);
 }
+// The walk's test of edge AB's region from vc, d1, d3 (and of AC's from vb, d2, d6): v <= 0,
+// s >= 0, t <= 0 and s - t > 0.
+__m256d edge_region(__m256d v, __m256d s, __m256d t) {
+  const __m256d zero = _mm256_setzero_pd();
+  return both(both(le(v, zero), ge(s, zero)), both(le(t, zero), gt(_mm256_sub_pd(s, t), zero)));
+}
 
 }  // namespace
 
@@ -83,14 +89,12 @@ unsigned face_interior_x4(const Vec3* const p4[4], const Vec3* const a4[4], cons
   const __m256d d3 = dot(ab, bp), d4 = dot(ac, bp);
   other = either(other, both(ge(d3, zero), le(d4, d3)));
   const __m256d vc = _mm256_sub_pd(_mm256_mul_pd(d1, d4), _mm256_mul_pd(d3, d2));
-  other = either(other, both(both(le(vc, zero), ge(d1, zero)),
-                             both(le(d3, zero), gt(_mm256_sub_pd(d1, d3), zero))));
+  other = either(other, edge_region(vc, d1, d3));
   const V4 cp = sub(p, c);
   const __m256d d5 = dot(ab, cp), d6 = dot(ac, cp);
   other = either(other, both(ge(d6, zero), le(d5, d6)));
   const __m256d vb = _mm256_sub_pd(_mm256_mul_pd(d5, d2), _mm256_mul_pd(d1, d6));
-  other = either(other, both(both(le(vb, zero), ge(d2, zero)),
-                             both(le(d6, zero), gt(_mm256_sub_pd(d2, d6), zero))));
+  other = either(other, edge_region(vb, d2, d6));
   const __m256d va = _mm256_sub_pd(_mm256_mul_pd(d3, d6), _mm256_mul_pd(d5, d4));
   const __m256d e43 = _mm256_sub_pd(d4, d3), e56 = _mm256_sub_pd(d5, d6);
   other = either(other, both(both(le(va, zero), ge(e43, zero)),
