@@ -1565,7 +1565,9 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     }
     return selected;
   };
-  auto bounds_of = [&](std::size_t k, std::size_t count) {  // count: of the selected blocks' lanes
+  // Query k's bounds into scratch.bound (count: the selected blocks' lanes), the smallest and the
+  // runner-up (NaN bounds become 0: evaluated first, never culled).
+  auto bounds_of = [&](std::size_t k, std::size_t count) {
     return dense ? kernels_->bounds(scratch.rows.data(), stride, candidates, scratch.qf[k],
                                     scratch.bound)
                  : kernels_->block_bounds(scratch.block_rows, which, count / 4, scratch.qf[k],
