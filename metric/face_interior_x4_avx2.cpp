@@ -1,5 +1,7 @@
 // face_interior_x4 for AVX2 (no FMA): this translation unit alone is compiled with -mavx2
-// (metric/CMakeLists.txt) and is entered only after the CPU check (simd_level()).
+// (metric/CMakeLists.txt) and is entered only after the CPU check (simd_level()). It calls no
+// inline function shared with other translation units (the linker could pick its AVX2 copy for
+// everyone), so the feature rule of make_hit (closest_point_triangle.h) is written out below.
 #include <immintrin.h>
 
 #include "metric/face_interior_x4.h"
