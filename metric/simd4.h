@@ -96,4 +96,18 @@ inline void store(float* p, F4 a) {
 
 #endif
 
+// Squared distances from the box [qlo, qhi] to four boxes [blo, bhi] (float frame): per axis the
+// gap max(max(blo - qhi, qlo - bhi), 0), squared and summed in axis order. Float rounding is
+// relative (far below 1e-5), and never makes a gap larger than a point's in the box.
+// (metric/leaf_gather_avx2.cpp performs the same operations in its own code.)
+inline F4 box_gap2(const F4 blo[3], const F4 bhi[3], const F4 qlo[3], const F4 qhi[3]) {
+  const F4 zero = F4::splat(0.0f);
+  F4 d2 = zero;
+  for (int k = 0; k < 3; ++k) {
+    const F4 d = max(max(blo[k] - qhi[k], qlo[k] - bhi[k]), zero);
+    d2 = d2 + d * d;
+  }
+  return d2;
+}
+
 }  // namespace meshdev::simd

@@ -41,8 +41,8 @@ constexpr int kMaxBinaryDepth = kMaxSahDepth + 33;
 // Each 4-wide level pushes at most 3 entries more than it pops.
 constexpr int kStackSize = 3 * kMaxBinaryDepth + 4;
 
-constexpr std::uint32_t kLeafBit = 0x80000000u;
-constexpr std::uint32_t kEmpty = 0xffffffffu;
+constexpr std::uint32_t kLeafBit = detail::kWideLeafBit;
+constexpr std::uint32_t kEmpty = detail::kWideEmpty;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kUnit = 0x1p-24;  // unit roundoff of float (round to nearest)
@@ -328,18 +328,6 @@ inline F4 box_sq_distances(const float lo[3][4], const float hi[3][4], const F4 
   return box_sq_distances_f4(l, h, p);
 }
 
-// Squared distances from the box [qlo, qhi] to four boxes (float frame); float rounding is
-// relative (far below 1e-5), and never makes a gap larger than a point's in the box.
-inline F4 box_gap2(const F4 blo[3], const F4 bhi[3], const F4 qlo[3], const F4 qhi[3]) {
-  const F4 zero = F4::splat(0.0f);
-  F4 d2 = zero;
-  for (int k = 0; k < 3; ++k) {
-    const F4 d = max(max(blo[k] - qhi[k], qlo[k] - bhi[k]), zero);
-    d2 = d2 + d * d;
-  }
-  return d2;
-}
-
 inline F4 dot3(const F4 a[3], const F4 b[3]) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
@@ -371,6 +359,7 @@ std::uint64_t next_id() {
 TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
     : eval_(target, ties, /*with_spheres=*/false, threads),
       kernels_(&plane_kernels(simd_level())),
+      avx_gather_(simd_level() != SimdLevel::kBaseline),
       id_(next_id()),
       check_reach_(std::sqrt(eval_.exact_check_sq)) {
   build(threads);
@@ -1271,15 +1260,8 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
   return i;
 }
 
-// Depth first from the root, opening every node whose box lies within reach of [lo, hi].
-// Without a branch per child: each of a node's four children is written both to the stack and
-// to the blocks, and counted where it is kept (inner nodes on the stack, leaf blocks in the
-// list); the blocks come depth first, a node's children in lane order, as from a loop over the
-// kept children. The children kept vary from packet to packet, and such a loop branched on each
-// (cachegrind's branch model: 1.8 M mispredictions there for 1 M queries of torus100k -> 1m,
-// before 186b11d); chunk-interleaved,
-// torus100k -> 1m +1.3-1.9 %, torus1m -> 100k +1.5 %, torus100k -> 10k +0.2-2.6 %
-// (docs/performance-log.md §3).
+// Breadth first from the root, opening every node whose box lies within reach of [lo, hi]
+// (detail::gather_leaf_blocks, or its AVX twin where the CPU runs AVX2, metric/leaf_gather.h).
 bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double reach,
                                 PacketScratch& scratch) const {
   scratch.block_count = 0;
@@ -1292,38 +1274,26 @@ bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double rea
     scratch.block_count = 1;
     return true;
   }
-  const F4 qlo[3] = {F4::splat(lo[0]), F4::splat(lo[1]), F4::splat(lo[2])};
-  const F4 qhi[3] = {F4::splat(hi[0]), F4::splat(hi[1]), F4::splat(hi[2])};
-  const F4 limit2 = F4::splat(round_up_to_float(reach * reach * (1.0 + 1e-5)));
-  std::uint32_t stack[kStackSize + 4];  // + 4: a node's children are written past the top
-  int top = 0;
-  std::size_t count = 0;  // blocks kept; a node writes four entries from there
-  stack[top++] = root_;
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    F4 blo[3], bhi[3];
-    for (int a = 0; a < 3; ++a) {
-      blo[a] = F4::load(node.lo[a]);
-      bhi[a] = F4::load(node.hi[a]);
-    }
-    const unsigned keep =
-        static_cast<unsigned>(~greater_mask(box_gap2(blo, bhi, qlo, qhi), limit2)) & 0xfu;
-    for (int k = 0; k < 4; ++k) {
-      const std::uint32_t ref = node.child[k];
-      const unsigned kept = (keep >> k & 1u) & static_cast<unsigned>(ref != kEmpty);
-      const unsigned inner = static_cast<unsigned>((ref & kLeafBit) == 0);
-      stack[top] = ref;
-      top += static_cast<int>(kept & inner);
-      scratch.block[count] = ref & ~kLeafBit;
-      for (int a = 0; a < 3; ++a) {
-        scratch.block_lo[a][count] = node.lo[a][k];
-        scratch.block_hi[a][count] = node.hi[a][k];
-      }
-      count += kept & (inner ^ 1u);
-    }
-    if (count > kMaxBlocks) return false;
-    assert(top <= kStackSize);
-  }
+  const float limit2 = round_up_to_float(reach * reach * (1.0 + 1e-5));
+  // The nodes opened: beyond kGatherNodes the packet would hold more blocks than it may, nearly
+  // always (a node is opened only where its box lies within reach).
+  constexpr std::size_t kGatherNodes = 4 * kMaxBlocks;
+  std::uint32_t queue[kGatherNodes + 4];  // + 4: a node writes four refs from the tail
+  const detail::GatheredBlocks blocks{
+      scratch.block,
+      {scratch.block_lo[0], scratch.block_lo[1], scratch.block_lo[2]},
+      {scratch.block_hi[0], scratch.block_hi[1], scratch.block_hi[2]}};
+#if defined(MESHDEV_X86_KERNELS)
+  const std::size_t count =
+      avx_gather_ ? detail::gather_leaf_blocks_avx2(nodes_.data(), root_, lo, hi, limit2,
+                                                    kMaxBlocks, queue, kGatherNodes, blocks)
+                  : detail::gather_leaf_blocks(nodes_.data(), root_, lo, hi, limit2, kMaxBlocks,
+                                               queue, kGatherNodes, blocks);
+#else
+  const std::size_t count = detail::gather_leaf_blocks(nodes_.data(), root_, lo, hi, limit2,
+                                                       kMaxBlocks, queue, kGatherNodes, blocks);
+#endif
+  if (count > kMaxBlocks) return false;
   scratch.block_count = count;
   return true;
 }

@@ -56,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "metric/leaf_gather.h"
 #include "metric/nearest_point.h"
 #include "metric/plane_bounds.h"
 #include "metric/raw_storage_allocator.h"
@@ -86,12 +87,9 @@ class TriangleBvh final : public NearestPointIndex {
   std::string check_structure() const;
 
  private:
-  // Four child boxes, [axis][child]; child refs: a node index, kLeaf | leaf index, or kEmpty.
-  struct alignas(16) Node {
-    float lo[3][4];
-    float hi[3][4];
-    std::uint32_t child[4];
-  };
+  // Four child boxes, [axis][child]; child refs: a node index, kLeaf | leaf index, or kEmpty
+  // (metric/leaf_gather.h).
+  using Node = detail::WideNode;
   // Up to four triangles: corners [corner][axis][lane] (rounded to nearest), the cull margin
   // factor per lane (+inf: never culled by the triangle bound) and the face ids (kNoFace: empty).
   struct alignas(16) Leaf {
@@ -180,13 +178,15 @@ class TriangleBvh final : public NearestPointIndex {
 
   detail::FaceEvaluator eval_;
   const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)
-  std::uint64_t id_;             // unique in the process: owner of the threads' plane caches
-  double check_reach_ = 0;       // sqrt(eval_.exact_check_sq): the identical-triangle check's reach
-  Vec3 origin_;                  // centre of the target's bounding box
-  double scale_ = 1;             // float frame = (x - origin_) * scale_
-  bool cull_scale_ = true;       // false: the mesh is too small or large to cull (see kMinExtent)
-  double corner_error_ = 0;      // max |float corner - exact corner| in the float frame
-  double packet_extent_ = 0;     // largest packet box diagonal (float frame) for find_batch
+  // gather_blocks walks with AVX lane permutations (the CPU runs AVX2, metric/leaf_gather.h).
+  bool avx_gather_;
+  std::uint64_t id_;          // unique in the process: owner of the threads' plane caches
+  double check_reach_ = 0;    // sqrt(eval_.exact_check_sq): the identical-triangle check's reach
+  Vec3 origin_;               // centre of the target's bounding box
+  double scale_ = 1;          // float frame = (x - origin_) * scale_
+  bool cull_scale_ = true;    // false: the mesh is too small or large to cull (see kMinExtent)
+  double corner_error_ = 0;   // max |float corner - exact corner| in the float frame
+  double packet_extent_ = 0;  // largest packet box diagonal (float frame) for find_batch
   double full_packet_extent_ = 0;  // the same for packets of at least kFullPacket queries
   std::uint32_t root_ = 0;         // child ref of the root
   std::vector<Node> nodes_;
