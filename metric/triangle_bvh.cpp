@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "metric/float_rounding.h"
+#include "metric/key_ranks.h"
 #include "metric/morton_order.h"
 #include "metric/plane_bounds.h"
 #include "metric/simd4.h"
@@ -463,6 +464,11 @@ void TriangleBvh::build(int threads) {
   std::unique_ptr<BinaryNode[]> tree(new BinaryNode[max_nodes]);
   std::atomic<std::uint32_t> next_node{1};
   std::atomic<std::uint32_t> used_nodes{1};
+#if defined(MESHDEV_X86_KERNELS)
+  const bool avx_ranks = simd_level() != SimdLevel::kBaseline;
+#else
+  constexpr bool avx_ranks = false;
+#endif
   auto split = [&](auto&& self, std::uint32_t node, std::uint32_t begin, std::uint32_t end,
                    int depth, bool known, Bounds bounds, Bounds centre_bounds, bool long_runs,
                    std::uint32_t* pool) -> void {
@@ -519,12 +525,14 @@ void TriangleBvh::build(int threads) {
       // blocks 2/3 full).
       // Ordered by key, then face, as 64-bit integers (key bits above the face's), all distinct:
       // each face goes straight to its rank, the number of smaller keys (at most 32 x 32
-      // comparisons without a branch). std::sort of (key, position) pairs and a move by the
-      // sorted positions gave the same order with a branch per comparison, on keys in no order
-      // a predictor learns: builds 6-10 % slower (peer_compare --ab 9 --ab-build, 1 / 2
-      // threads: torus1m 1.059 / 1.069, buildings.ply 1.087 / 1.100, torus1m_shuffled 1.086 /
-      // 1.063; docs/performance-log.md §3, thirty-third session). Sorting the 32-byte faces by
-      // their keys took twice as long.
+      // comparisons without a branch, four per instruction where the CPU runs AVX2,
+      // metric/key_ranks.h: torus1m's build 1.036 / 1.027 on 1 / 2 threads, `peer_compare
+      // torus100k.ply torus1m.ply 1000000 --ab 8 --ab-build`; docs/performance-log.md §3).
+      // std::sort of (key, position) pairs and a move by the sorted positions gave the same order
+      // with a branch per comparison, on keys in no order a predictor learns: builds 6-10 % slower
+      // (peer_compare --ab 9 --ab-build, 1 / 2 threads: torus1m 1.059 / 1.069, buildings.ply 1.087
+      // / 1.100, torus1m_shuffled 1.086 / 1.063; docs/performance-log.md §3, thirty-third session).
+      // Sorting the 32-byte faces by their keys took twice as long.
       std::uint64_t key[kAlignBelow];
       Prim moved[kAlignBelow];
       for (std::uint32_t i = 0; i < count; ++i) {
@@ -532,11 +540,13 @@ void TriangleBvh::build(int threads) {
         key[i] = std::uint64_t{sortable_bits(prim.key(axis))} << 32 | prim.face();
         moved[i] = prim;
       }
-      for (std::uint32_t i = 0; i < count; ++i) {
-        std::uint32_t rank = 0;
-        for (std::uint32_t j = 0; j < count; ++j) rank += key[j] < key[i];
-        first[begin + rank] = moved[i];
-      }
+      static_assert(kAlignBelow <= detail::kMaxRankKeys, "a small subtree's keys fit key_ranks");
+      std::uint32_t rank[kAlignBelow];
+      if (avx_ranks)
+        detail::key_ranks_avx2(key, count, rank);
+      else
+        detail::key_ranks(key, count, rank);
+      for (std::uint32_t i = 0; i < count; ++i) first[begin + rank[i]] = moved[i];
       constexpr std::uint32_t kCuts = kAlignBelow / kLeafSize + 1;
       Bounds prefix[kCuts], prefix_centres[kCuts], suffix[kCuts], suffix_centres[kCuts];
       Bounds acc, acc_centres;
@@ -786,9 +796,11 @@ void TriangleBvh::build(int threads) {
 
   // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
   const auto leaf_count = static_cast<std::int64_t>(blocks);
-  leaves_.resize(blocks);                 // raw storage: each block is written in full below
-  std::vector<double> leaf_size(blocks);  // sum of the faces' longest edges
-  double corner_error2 = 0.0;             // square roots are taken once, of the maxima
+  leaves_.resize(blocks);  // raw storage: each block is written in full below
+  // Sum of the faces' longest edges, per block; raw storage, each written below by its thread
+  // (value-initialised, the calling thread zeroed 2 MB for torus1m while the team waited).
+  std::vector<double, RawStorageAllocator<double>> leaf_size(blocks);
+  double corner_error2 = 0.0;  // square roots are taken once, of the maxima
   constexpr std::int64_t kBlocksPerTask = 1024;
 #pragma omp parallel num_threads(team)
   {
