@@ -1487,24 +1487,21 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
                  : leaves_[scratch.block[which[idx >> 2]]].face[idx & 3];
   };
   // The candidates' faces in the mesh (above) and their corners' positions (the exact tests read
-  // them, in double), prefetched now: otherwise a face's first exact test in the packet waited for
+  // them, in double), prefetched: otherwise a face's first exact test in the packet waited for
   // its misses one at a time, which the evaluation's long body keeps from overlapping. Where the
   // target's faces are stored in no spatial order (torus1m's shuffled) the exact tests took
   // 20 % of the process; peer_compare torus100k -> that mesh +26 %, -> torus1m itself +2.5 %,
-  // the others within noise (docs/performance-log.md §3).
+  // the others within noise (docs/performance-log.md §3). Dense packets: every candidate's, now.
+  // Sparse packets: only each query's first face, as the first pass below finds it (the tests of
+  // the second pass read those), instead of every gathered block's four: `peer_compare --ab 8`,
+  // 1 / 2 threads, torus100k -> 1m 1.009 / 1.011 and 1.019 / 1.009, -> torus1m_shuffled 1.011 /
+  // 1.003, the other pairs within noise (docs/performance-log.md §3).
   auto prefetch_corners = [&](std::uint32_t face) {
     const Triangle& t = mesh.faces[face];
     for (int corner = 0; corner < 3; ++corner) __builtin_prefetch(&mesh.positions[t[corner]]);
   };
-  if (dense) {
+  if (dense)
     for (std::size_t idx = 0; idx < candidates; ++idx) prefetch_corners(face_at(idx));
-  } else {
-    for (std::size_t b = 0; b < blocks; ++b) {
-      const Leaf& leaf = leaves_[scratch.block[b]];
-      for (int lane = 0; lane < 4; ++lane)
-        if (leaf.face[lane] != kNoFace) prefetch_corners(leaf.face[lane]);
-    }
-  }
 
   // Each query: float lower bounds sqrt(h^2 + max(out_e, 0)^2) of its candidates, then the
   // survivors evaluated exactly, smallest bound first, until the bound passes the tie limit.
@@ -1582,6 +1579,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       continue;
     }
     status[k] = kTested;
+    if (!dense) prefetch_corners(first_face[k]);  // for the first exact tests, below
     first_idx[k] = static_cast<std::uint32_t>(least.first);
     counted[k] = static_cast<std::uint32_t>(count);
     runner_up[k] = least.runner_up;
