@@ -312,15 +312,9 @@ struct BinaryNode {
   }
 };
 
-// Squared distances from p to four boxes (float frame).
+// Squared distances from p to four boxes (float frame): box_gap2 of the box [p, p].
 inline F4 box_sq_distances_f4(const F4 lo[3], const F4 hi[3], const F4 p[3]) {
-  const F4 zero = F4::splat(0.0f);
-  F4 d2 = zero;
-  for (int k = 0; k < 3; ++k) {
-    const F4 d = max(max(lo[k] - p[k], p[k] - hi[k]), zero);
-    d2 = d2 + d * d;
-  }
-  return d2;
+  return box_gap2(lo, hi, p, p);
 }
 // The same for the four boxes of a node.
 inline F4 box_sq_distances(const float lo[3][4], const float hi[3][4], const F4 p[3]) {
