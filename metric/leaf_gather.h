@@ -41,8 +41,8 @@ struct GatheredBlocks {
 // Breadth first rather than depth first because the next node opened does not depend on the
 // node being opened (a depth-first stack's top does, through the count of children pushed), so
 // the processor overlaps consecutive nodes' loads and box tests: with the AVX version below,
-// `peer_compare --ab 8`, 1 / 2 threads, torus100k -> 1m 1.058 / 1.078, torus1m -> 100k 1.022 /
-// 1.025, against the AVX version depth first (docs/performance-log.md §3). Which order the
+// `peer_compare --ab 8`, 1 / 2 threads, torus100k -> 1m 1.058 / 1.078, torus1m -> torus100k
+// 1.022 / 1.025, against the AVX version depth first (docs/performance-log.md §3). Which order the
 // blocks come in changes no answer: a packet tests every face whose bound is within its cutoff,
 // and keep_ties orders ties by face.
 std::size_t gather_leaf_blocks(const WideNode* nodes, std::uint32_t root, const float lo[3],
