@@ -13,8 +13,10 @@
 #include <string>
 #include <utility>
 
+#include "metric/face_boxes.h"
 #include "metric/float_rounding.h"
 #include "metric/key_ranks.h"
+#include "metric/leaf_blocks.h"
 #include "metric/morton_order.h"
 #include "metric/plane_bounds.h"
 #include "metric/simd4.h"
@@ -46,10 +48,7 @@ constexpr std::uint32_t kLeafBit = detail::kWideLeafBit;
 constexpr std::uint32_t kEmpty = detail::kWideEmpty;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
-constexpr double kUnit = 0x1p-24;  // unit roundoff of float (round to nearest)
-// Margin constant of the triangle bound (see the header and docs/metric.md): the first-order
-// rounding analysis gives about 20 u (1 + kappa) (|ap| + |bp| + |cp|); 64 leaves a factor 3.
-constexpr double kMarginConstant = 64.0;
+constexpr double kUnit = detail::kFloatUnit;  // unit roundoff of float (round to nearest)
 // Slivers beyond kappa = kMaxKappa are never culled by the bound, nor triangles with
 // |ab x ac|^2 below kMinNormal2 (float frame, where B spans [-1, 1]). That keeps |n| >= 1e-10 and
 // |e| |n| >= 3e-21, so a float underflow anywhere in the bound (absolute error <= 2^-149 per
@@ -136,26 +135,25 @@ struct Box {
   }
 };
 
-// One face during the build, 32 bytes: its box in the float frame, rounded outwards (so node
-// boxes made of them are conservative), with the face index's bits in the fourth lane of lo
-// (the SSE box unions and centre sums carry that lane along and never read it). The build
-// partitions these in place, so every pass over a range reads memory in order. lo + hi, twice
-// the box centre, places the face.
-struct alignas(16) Prim {
-  float lo[4];
-  float hi[4];  // lane 3: 0
-  std::uint32_t face() const {
-    std::uint32_t f;
-    std::memcpy(&f, &lo[3], sizeof f);
-    return f;
-  }
-  F4 centre2() const { return F4::load(lo) + F4::load(hi); }
-  // The centre key along `axis`; NaN (boxes reaching +-inf, only on meshes never culled) is 0.
-  float key(int axis) const {
-    const float c = lo[axis] + hi[axis];
-    return c == c ? c : 0.0f;
-  }
-};
+// One face during the build, 32 bytes (metric/face_boxes.h): its box in the float frame, rounded
+// outwards (so node boxes made of them are conservative), with the face index's bits in the fourth
+// lane of lo (the SSE box unions and centre sums carry that lane along and never read it). The
+// build partitions these in place, so every pass over a range reads memory in order. lo + hi,
+// twice the box centre, places the face.
+using Prim = detail::FaceBox;
+std::uint32_t face_of(const Prim& prim) {
+  std::uint32_t f;
+  std::memcpy(&f, &prim.lo[3], sizeof f);
+  return f;
+}
+F4 centre2(const Prim& prim) {
+  return F4::load(prim.lo) + F4::load(prim.hi);
+}
+// The centre key along `axis`; NaN (boxes reaching +-inf, only on meshes never culled) is 0.
+float centre_key(const Prim& prim, int axis) {
+  const float c = prim.lo[axis] + prim.hi[axis];
+  return c == c ? c : 0.0f;
+}
 
 // Boxes of the binning, lanes x, y, z (lane 3 unused).
 struct Bounds {
@@ -208,7 +206,8 @@ std::uint32_t sortable_bits(float f) {
 bool out_of_spatial_order(const Prim* prims, std::uint32_t n, const Box& centres) {
   auto cell = [&centres](const Prim& prim, int k) {
     const double extent = double(centres.hi[k]) - centres.lo[k];
-    const double t = extent > 0.0 ? (prim.key(k) - centres.lo[k]) / extent * kOrderGrid : 0.0;
+    const double t =
+        extent > 0.0 ? (centre_key(prim, k) - centres.lo[k]) / extent * kOrderGrid : 0.0;
     return t >= kOrderGrid - 1 ? kOrderGrid - 1 : t > 0.0 ? static_cast<int>(t) : 0;  // NaN: 0
   };
   std::uint32_t pairs = 0, apart = 0;
@@ -245,7 +244,7 @@ void sort_along_morton_curve(std::unique_ptr<Prim[]>& prims, std::uint32_t n, co
     for (std::uint32_t i = begin; i < end; ++i) {
       std::uint64_t code = 0;
       for (int k = 0; k < 3; ++k) {
-        const float t = (prims[i].key(k) - centres.lo[k]) * scale;
+        const float t = (centre_key(prims[i], k) - centres.lo[k]) * scale;
         const auto c = static_cast<std::uint32_t>(t > 0.0f ? (t < kMaxCell ? t : kMaxCell) : 0.0f);
         code |= (spread[c & 127u] | spread[c >> 7] << 21) << k;
       }
@@ -283,17 +282,6 @@ void sort_along_morton_curve(std::unique_ptr<Prim[]>& prims, std::uint32_t n, co
     codes[i] = static_cast<std::uint32_t>(keys[i] >> 32);
   }
   prims.swap(sorted);
-}
-
-// The conditioning kappa = |ab||ac| / |ab x ac| of a triangle with edges ab, ac (float frame), or
-// +inf where the triangle bound must never cull it: |ab x ac|^2 near float underflow
-// (kMinNormal2) or a sliver (kappa > kMaxKappa). For the leaf bound's margins; the packets'
-// planes (PlaneKernels::block_planes) test the same limits on squares.
-double cull_kappa(const Vec3& ab, const Vec3& ac) {
-  const double n2 = squared_norm(cross(ab, ac));
-  if (!(n2 >= kMinNormal2)) return std::numeric_limits<double>::infinity();
-  const double kappa = norm(ab) * norm(ac) / std::sqrt(n2);
-  return kappa <= kMaxKappa ? kappa : std::numeric_limits<double>::infinity();  // NaN too
 }
 
 // Trivial (no initialisers): 2F of them are allocated up front and only those used are ever
@@ -380,15 +368,10 @@ void TriangleBvh::build(int threads) {
   // oracle's arithmetic: such meshes are searched without culling.
   cull_scale_ = extent >= kMinExtent && extent <= kMaxExtent;
   const int team = threads > 0 ? threads : omp_get_max_threads();
-  // A vertex in the float frame (in double), computed where it is read: a stored copy of the
-  // frame was 24 bytes per vertex written in a pass of its own (torus1m: 12 MB; the same trees,
-  // docs/performance-log.md §3, twenty-seventh session).
-  const Vec3 frame_origin = origin_;
-  const double frame_scale = scale_;
-  auto frame = [&m, frame_origin, frame_scale](std::uint32_t v) {
-    const Vec3 x = (m.positions[v] - frame_origin) * frame_scale;
-    return std::array<double, 3>{x.x, x.y, x.z};
-  };
+  // A vertex in the float frame (in double), computed where it is read (the face records, the
+  // leaf blocks): a stored copy of the frame was 24 bytes per vertex written in a pass of its own
+  // (torus1m: 12 MB; the same trees, docs/performance-log.md §3, twenty-seventh session).
+  const detail::FrameMap frame_map{{origin_.x, origin_.y, origin_.z}, scale_};
   // Scratch arrays are allocated uninitialised and first written by the threads that use them.
 
   // Binary SAH tree over the face boxes (float frame).
@@ -400,41 +383,34 @@ void TriangleBvh::build(int threads) {
   // The root's box and centre box are gathered here, per thread, and merged (min and max: the same
   // for any team), instead of in a pass of the root's split on one thread.
   std::vector<Bounds> part_bounds(static_cast<std::size_t>(team)), part_centres(part_bounds);
-  // The corners of the face kRecordAhead on are prefetched: where faces are stored in no spatial
-  // order their frame coordinates are cache misses (torus1m with its faces shuffled: the build
-  // 0.19 -> 0.17 s; coherent meshes unchanged; docs/performance-log.md §3).
-  constexpr std::int64_t kRecordAhead = 8;
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Triangle) == 3 * sizeof(std::uint32_t),
+                "the face records and leaf blocks read positions and faces as raw arrays");
+  const double* const positions = &m.positions[0].x;
+  const std::uint32_t* const corners = m.faces[0].data();
+#if defined(MESHDEV_X86_KERNELS)
+  const bool avx2 = simd_level() != SimdLevel::kBaseline;
+#else
+  constexpr bool avx2 = false;
+#endif
+  // The face records four at a time in AVX2 lanes where the CPU has them (metric/face_boxes.h:
+  // torus1m's build 1.088 / 1.081 faster on 1 / 2 threads, torus1m_shuffled 1.095 / 1.117,
+  // buildings 1.126 / 1.081; `peer_compare A B 1000000 --ab 6 --ab-build`, docs/performance-log.md
+  // §3), each thread its share of the faces in order.
 #pragma omp parallel num_threads(team)
   {
-    Bounds bounds, centres;
-#pragma omp for schedule(static) nowait
-    for (std::int64_t f = 0; f < static_cast<std::int64_t>(n); ++f) {
-      if (f + kRecordAhead < static_cast<std::int64_t>(n))
-        for (std::uint32_t v : m.faces[f + kRecordAhead]) __builtin_prefetch(&m.positions[v]);
-      const std::array<double, 3> x0 = frame(m.faces[f][0]);
-      double lo[3], hi[3];
-      for (int k = 0; k < 3; ++k) lo[k] = hi[k] = x0[k];
-      for (int corner = 1; corner < 3; ++corner) {
-        const std::array<double, 3> x = frame(m.faces[f][corner]);
-        for (int k = 0; k < 3; ++k) {
-          lo[k] = std::min(lo[k], x[k]);
-          hi[k] = std::max(hi[k], x[k]);
-        }
-      }
-      Prim& prim = prims[f];
-      for (int k = 0; k < 3; ++k) {
-        prim.lo[k] = round_down_to_float(lo[k]);
-        prim.hi[k] = round_up_to_float(hi[k]);
-      }
-      const auto face = static_cast<std::uint32_t>(f);
-      std::memcpy(&prim.lo[3], &face, sizeof face);
-      prim.hi[3] = 0.0f;
-      bounds.extend(F4::load(prim.lo), F4::load(prim.hi));
-      const F4 c = prim.centre2();
-      centres.extend(c, c);
-    }
-    part_bounds[static_cast<std::size_t>(omp_get_thread_num())] = bounds;
-    part_centres[static_cast<std::size_t>(omp_get_thread_num())] = centres;
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto members = static_cast<std::size_t>(omp_get_num_threads());
+    const auto from = static_cast<std::uint32_t>(n * t / members);
+    const auto to = static_cast<std::uint32_t>(n * (t + 1) / members);
+    detail::LaneBounds boxes, centres;
+    if (avx2)
+      detail::face_boxes_avx2(positions, corners, from, to, frame_map, prims.get() + from, boxes,
+                              centres);
+    else
+      detail::face_boxes(positions, corners, from, to, frame_map, prims.get() + from, boxes,
+                         centres);
+    part_bounds[t].lo = F4::load(boxes.lo), part_bounds[t].hi = F4::load(boxes.hi);
+    part_centres[t].lo = F4::load(centres.lo), part_centres[t].hi = F4::load(centres.hi);
   }
   Bounds root_bounds, root_centres;
   for (int t = 0; t < team; ++t) {
@@ -458,11 +434,6 @@ void TriangleBvh::build(int threads) {
   std::unique_ptr<BinaryNode[]> tree(new BinaryNode[max_nodes]);
   std::atomic<std::uint32_t> next_node{1};
   std::atomic<std::uint32_t> used_nodes{1};
-#if defined(MESHDEV_X86_KERNELS)
-  const bool avx_ranks = simd_level() != SimdLevel::kBaseline;
-#else
-  constexpr bool avx_ranks = false;
-#endif
   auto split = [&](auto&& self, std::uint32_t node, std::uint32_t begin, std::uint32_t end,
                    int depth, bool known, Bounds bounds, Bounds centre_bounds, bool long_runs,
                    std::uint32_t* pool) -> void {
@@ -474,7 +445,7 @@ void TriangleBvh::build(int threads) {
     if (!known && !by_code)
       for (std::uint32_t i = begin; i < end; ++i) {
         bounds.extend(F4::load(first[i].lo), F4::load(first[i].hi));
-        const F4 c = first[i].centre2();
+        const F4 c = centre2(first[i]);
         centre_bounds.extend(c, c);
       }
     if (!by_code) tree[node].set_box(bounds.box());
@@ -531,12 +502,12 @@ void TriangleBvh::build(int threads) {
       Prim moved[kAlignBelow];
       for (std::uint32_t i = 0; i < count; ++i) {
         const Prim& prim = first[begin + i];
-        key[i] = std::uint64_t{sortable_bits(prim.key(axis))} << 32 | prim.face();
+        key[i] = std::uint64_t{sortable_bits(centre_key(prim, axis))} << 32 | face_of(prim);
         moved[i] = prim;
       }
       static_assert(kAlignBelow <= detail::kMaxRankKeys, "a small subtree's keys fit key_ranks");
       std::uint32_t rank[kAlignBelow];
-      if (avx_ranks)
+      if (avx2)
         detail::key_ranks_avx2(key, count, rank);
       else
         detail::key_ranks(key, count, rank);
@@ -549,7 +520,7 @@ void TriangleBvh::build(int threads) {
           prefix[i / kLeafSize] = acc, prefix_centres[i / kLeafSize] = acc_centres;
         const Prim& prim = first[begin + i];
         acc.extend(F4::load(prim.lo), F4::load(prim.hi));
-        const F4 c = prim.centre2();
+        const F4 c = centre2(prim);
         acc_centres.extend(c, c);
       }
       acc = acc_centres = Bounds{};
@@ -557,7 +528,7 @@ void TriangleBvh::build(int threads) {
       for (std::uint32_t i = count; i-- > kLeafSize;) {        // suffix[c]: the faces from 4c on
         const Prim& prim = first[begin + i];
         acc.extend(F4::load(prim.lo), F4::load(prim.hi));
-        const F4 c = prim.centre2();
+        const F4 c = centre2(prim);
         acc_centres.extend(c, c);
         if (i % kLeafSize == 0 && i / kLeafSize <= last_cut)
           suffix[i / kLeafSize] = acc, suffix_centres[i / kLeafSize] = acc_centres;
@@ -582,7 +553,7 @@ void TriangleBvh::build(int threads) {
       const double lo = centres.lo[axis];
       const double scale = kBins / axis_extent;  // finite: axis_extent >= the least float
       auto bin_of = [&](const Prim& prim) {
-        const double t = (prim.key(axis) - lo) * scale;
+        const double t = (centre_key(prim, axis) - lo) * scale;
         return t >= kBins - 1 ? kBins - 1 : t > 0.0 ? static_cast<int>(t) : 0;
       };
       // Faces near in the mesh's order are often near in space and fall in the bin of the face
@@ -788,7 +759,10 @@ void TriangleBvh::build(int threads) {
     return id;
   };
 
-  // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins.
+  // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins; in
+  // AVX2 lanes where the CPU has them (metric/leaf_blocks.h: torus1m's build 1.022 / 1.060 on 1 /
+  // 2 threads, torus1m_shuffled 1.044 / 1.030; the blocks' corners are cache misses more than
+  // arithmetic, docs/performance-log.md §3).
   const auto leaf_count = static_cast<std::int64_t>(blocks);
   leaves_.resize(blocks);  // raw storage: each block is written in full below
   // Sum of the faces' longest edges, per block; raw storage, each written below by its thread
@@ -808,44 +782,22 @@ void TriangleBvh::build(int threads) {
       constexpr std::int64_t kAhead = 16;
       if (l + kAhead < leaf_count)
         for (std::uint32_t i = leaf_first[l + kAhead]; i < leaf_first[l + kAhead + 1]; ++i)
-          __builtin_prefetch(&m.faces[prims[i].face()]);
+          __builtin_prefetch(&m.faces[face_of(prims[i])]);
       if (l + kAhead / 2 < leaf_count)
         for (std::uint32_t i = leaf_first[l + kAhead / 2]; i < leaf_first[l + kAhead / 2 + 1]; ++i)
-          for (std::uint32_t v : m.faces[prims[i].face()]) __builtin_prefetch(&m.positions[v]);
+          for (std::uint32_t v : m.faces[face_of(prims[i])]) __builtin_prefetch(&m.positions[v]);
       const std::uint32_t begin = leaf_first[l], count = leaf_first[l + 1] - begin;
       assert(count >= 1 && count <= kLeafSize);
-      Leaf& leaf = leaves_[l];
-      double size = 0.0;
-      for (int lane = 0; lane < 4; ++lane) {
-        leaf.margin[lane] = kInf;
-        leaf.face[lane] = kNoFace;
-        for (int corner = 0; corner < 3; ++corner)
-          for (int k = 0; k < 3; ++k) leaf.corner[corner][k][lane] = 0.0f;
-      }
-      for (std::uint32_t lane = 0; lane < count; ++lane) {
-        const std::uint32_t f = prims[begin + lane].face();
-        leaf.face[lane] = f;
-        double c[3][3];  // the float corners, exactly, in double
-        for (int corner = 0; corner < 3; ++corner) {
-          const std::array<double, 3> x = frame(m.faces[f][corner]);
-          double err2 = 0.0;
-          for (int k = 0; k < 3; ++k) {
-            const float r = static_cast<float>(x[k]);
-            leaf.corner[corner][k][lane] = r;
-            c[corner][k] = r;
-            err2 += (c[corner][k] - x[k]) * (c[corner][k] - x[k]);
-          }
-          corner_error2 = std::max(corner_error2, err2);
-        }
-        const Vec3 a{c[0][0], c[0][1], c[0][2]}, bb{c[1][0], c[1][1], c[1][2]},
-            cc{c[2][0], c[2][1], c[2][2]};
-        const Vec3 ab = bb - a, ac = cc - a;
-        size += std::sqrt(std::max({squared_norm(ab), squared_norm(ac), squared_norm(cc - bb)}));
-        const double kappa = cull_kappa(ab, ac);
-        if (std::isfinite(kappa))
-          leaf.margin[lane] = round_up_to_float(kMarginConstant * kUnit * (2.0 + kappa));
-      }
-      leaf_size[l] = size;
+      std::uint32_t face_ids[kLeafSize];
+      for (std::uint32_t lane = 0; lane < count; ++lane)
+        face_ids[lane] = face_of(prims[begin + lane]);
+      const detail::LeafBlockSums sums =
+          avx2
+              ? detail::fill_leaf_block_avx2(positions, corners, face_ids, count, frame_map,
+                                             leaves_[l])
+              : detail::fill_leaf_block(positions, corners, face_ids, count, frame_map, leaves_[l]);
+      corner_error2 = std::max(corner_error2, sums.corner_error2);
+      leaf_size[l] = sums.edge_sum;
     }
   }
   assert(next_block == blocks);

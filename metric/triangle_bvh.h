@@ -56,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "metric/leaf_blocks.h"
 #include "metric/leaf_gather.h"
 #include "metric/nearest_point.h"
 #include "metric/plane_bounds.h"
@@ -90,13 +91,8 @@ class TriangleBvh final : public NearestPointIndex {
   // Four child boxes, [axis][child]; child refs: a node index, kLeaf | leaf index, or kEmpty
   // (metric/leaf_gather.h).
   using Node = detail::WideNode;
-  // Up to four triangles: corners [corner][axis][lane] (rounded to nearest), the cull margin
-  // factor per lane (+inf: never culled by the triangle bound) and the face ids (kNoFace: empty).
-  struct alignas(16) Leaf {
-    float corner[3][3][4];
-    float margin[4];
-    std::uint32_t face[4];
-  };
+  // Up to four triangles in SIMD lanes (metric/leaf_blocks.h).
+  using Leaf = detail::LeafBlock;
 
   // A leaf block's planes in a packet's cache (block kNoFace: an empty slot).
   struct CachedPlanes {
