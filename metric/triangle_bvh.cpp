@@ -436,7 +436,7 @@ void TriangleBvh::build(int threads) {
   std::atomic<std::uint32_t> used_nodes{1};
   auto split = [&](auto&& self, std::uint32_t node, std::uint32_t begin, std::uint32_t end,
                    int depth, bool known, Bounds bounds, Bounds centre_bounds, bool long_runs,
-                   std::uint32_t* pool) -> void {
+                   int sorted_axis, std::uint32_t* pool) -> void {
     assert(depth <= kMaxBinaryDepth);
     Prim* const first = prims.get();
     // A Morton split needs no pass over the range: the node's box is its children's, set after
@@ -470,6 +470,7 @@ void TriangleBvh::build(int threads) {
     std::uint32_t mid = begin + std::max(kLeafSize, count / 2 / kLeafSize * kLeafSize);
     bool children_known = false;
     bool children_long_runs = long_runs;
+    int children_sorted_axis = -1;  // the axis the children's faces are sorted along, if one
     Bounds child_bounds[2], child_centres[2];
     if (by_code) {
       // Where the highest bit in which the range's codes differ turns from 0 to 1 (the codes are
@@ -498,20 +499,27 @@ void TriangleBvh::build(int threads) {
       // (peer_compare --ab 9 --ab-build, 1 / 2 threads: torus1m 1.059 / 1.069, buildings.ply 1.087
       // / 1.100, torus1m_shuffled 1.086 / 1.063; docs/performance-log.md §3, thirty-third session).
       // Sorting the 32-byte faces by their keys took twice as long.
-      std::uint64_t key[kAlignBelow];
-      Prim moved[kAlignBelow];
-      for (std::uint32_t i = 0; i < count; ++i) {
-        const Prim& prim = first[begin + i];
-        key[i] = std::uint64_t{sortable_bits(centre_key(prim, axis))} << 32 | face_of(prim);
-        moved[i] = prim;
+      // Children of such a split along the same axis are sorted already (a range of the order
+      // by key, then face): their sort is skipped (torus1m's build 1.009 / 1.010 on 1 / 2 threads,
+      // buildings.ply 1.045 / 1.049; the same trees; `peer_compare A B 1000000 --ab 8
+      // --ab-build`, docs/performance-log.md §3).
+      if (sorted_axis != axis) {
+        std::uint64_t key[kAlignBelow];
+        Prim moved[kAlignBelow];
+        for (std::uint32_t i = 0; i < count; ++i) {
+          const Prim& prim = first[begin + i];
+          key[i] = std::uint64_t{sortable_bits(centre_key(prim, axis))} << 32 | face_of(prim);
+          moved[i] = prim;
+        }
+        static_assert(kAlignBelow <= detail::kMaxRankKeys, "a small subtree's keys fit key_ranks");
+        std::uint32_t rank[kAlignBelow];
+        if (avx2)
+          detail::key_ranks_avx2(key, count, rank);
+        else
+          detail::key_ranks(key, count, rank);
+        for (std::uint32_t i = 0; i < count; ++i) first[begin + rank[i]] = moved[i];
       }
-      static_assert(kAlignBelow <= detail::kMaxRankKeys, "a small subtree's keys fit key_ranks");
-      std::uint32_t rank[kAlignBelow];
-      if (avx2)
-        detail::key_ranks_avx2(key, count, rank);
-      else
-        detail::key_ranks(key, count, rank);
-      for (std::uint32_t i = 0; i < count; ++i) first[begin + rank[i]] = moved[i];
+      children_sorted_axis = axis;
       constexpr std::uint32_t kCuts = kAlignBelow / kLeafSize + 1;
       Bounds prefix[kCuts], prefix_centres[kCuts], suffix[kCuts], suffix_centres[kCuts];
       Bounds acc, acc_centres;
@@ -658,15 +666,15 @@ void TriangleBvh::build(int threads) {
     if (count > kTaskBelow) {
 #pragma omp task default(shared) firstprivate(left_child, mid, children_known, children_long_runs)
       self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
-           child_centres[0], children_long_runs, nullptr);
+           child_centres[0], children_long_runs, -1, nullptr);
       self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
-           child_centres[1], children_long_runs, nullptr);
+           child_centres[1], children_long_runs, -1, nullptr);
 #pragma omp taskwait
     } else {
       self(self, left_child, begin, mid, depth + 1, children_known, child_bounds[0],
-           child_centres[0], children_long_runs, pool);
+           child_centres[0], children_long_runs, children_sorted_axis, pool);
       self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
-           child_centres[1], children_long_runs, pool);
+           child_centres[1], children_long_runs, children_sorted_axis, pool);
       if (pool == &own) {
         assert(own - own_first <= 2 * count);
         used_nodes.fetch_add(own - own_first);
@@ -682,7 +690,7 @@ void TriangleBvh::build(int threads) {
   };
 #pragma omp parallel num_threads(team)
 #pragma omp single
-  split(split, 0, 0, n, 1, true, root_bounds, root_centres, true, nullptr);
+  split(split, 0, 0, n, 1, true, root_bounds, root_centres, true, -1, nullptr);
 
   // The leaf blocks in the order of the face records: block l holds the faces at positions
   // leaf_first[l] .. leaf_first[l + 1] - 1 (leaf_first[blocks] = n). The collapse below keeps
