@@ -9,33 +9,10 @@
 #include <vector>
 
 #include "metric/plane_bounds.h"
+#include "tests/support/shapes.h"
 
 namespace meshdev {
 namespace {
-
-// Random triangles at scales from 1e-6 to 1e2 around points up to 50 away, some sharing corners.
-struct Soup {
-  std::vector<double> positions;       // 3 per vertex
-  std::vector<std::uint32_t> corners;  // 3 per face
-};
-
-Soup make_soup(std::mt19937_64& rng, std::uint32_t faces) {
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Soup s;
-  for (std::uint32_t f = 0; f < faces; ++f) {
-    const double scale = std::pow(10.0, static_cast<int>(rng() % 9) - 6);
-    const double c[3] = {50 * unit(rng), 50 * unit(rng), 50 * unit(rng)};
-    for (int corner = 0; corner < 3; ++corner) {
-      if (corner == 1 && f > 0 && f % 3 == 0) {  // a corner of the face before
-        s.corners.push_back(s.corners[3 * (f - 1)]);
-        continue;
-      }
-      for (double ck : c) s.positions.push_back(ck + scale * unit(rng));
-      s.corners.push_back(static_cast<std::uint32_t>(s.positions.size() / 3 - 1));
-    }
-  }
-  return s;
-}
 
 bool same_bits(const void* a, const void* b, std::size_t bytes) {
   return std::memcmp(a, b, bytes) == 0;
@@ -48,15 +25,17 @@ bool same_bits(const void* a, const void* b, std::size_t bytes) {
 TEST(FaceBoxes, BothVersionsGiveTheSameRecordsBitForBit) {
   if (simd_level() == SimdLevel::kBaseline) GTEST_SKIP() << "this CPU runs no AVX2";
   std::mt19937_64 rng(5);
-  Soup soup = make_soup(rng, 3000);
+  TriMesh soup = test::kernel_soup(3000, 5);
   const double inf = std::numeric_limits<double>::infinity();
-  for (std::uint32_t v : {100u, 101u, 700u}) soup.positions[3 * v] = inf;
-  soup.positions[3 * 1300 + 1] = -inf;
+  for (std::uint32_t v : {100u, 101u, 700u}) soup.positions[v].x = inf;
+  soup.positions[1300].y = -inf;
   // NaN at a first corner (a NaN at the others is dropped by std::min and std::max) of face 1000.
-  soup.positions[3 * soup.corners[3 * 1000] + 2] = std::numeric_limits<double>::quiet_NaN();
+  soup.positions[soup.faces[1000][0]].z = std::numeric_limits<double>::quiet_NaN();
   const detail::FrameMap frames[] = {
       {{0.0, 0.0, 0.0}, 1.0}, {{1.5, -2.0, 30.0}, 1.0 / 70.0}, {{-3.0, 0.25, 7.0}, 1e37}};
-  const auto faces = static_cast<std::uint32_t>(soup.corners.size() / 3);
+  const auto faces = static_cast<std::uint32_t>(soup.faces.size());
+  const double* positions = &soup.positions[0].x;
+  const std::uint32_t* corners = soup.faces[0].data();
   for (const detail::FrameMap& frame : frames)
     for (int round = 0; round < 200; ++round) {
       const auto begin =
@@ -66,10 +45,9 @@ TEST(FaceBoxes, BothVersionsGiveTheSameRecordsBitForBit) {
       std::memset(static_cast<void*>(slow.data()), 0xab, slow.size() * sizeof slow[0]);
       std::memset(static_cast<void*>(fast.data()), 0xab, fast.size() * sizeof fast[0]);
       detail::LaneBounds boxes_a, centres_a, boxes_b, centres_b;
-      detail::face_boxes(soup.positions.data(), soup.corners.data(), begin, end, frame, slow.data(),
-                         boxes_a, centres_a);
-      detail::face_boxes_avx2(soup.positions.data(), soup.corners.data(), begin, end, frame,
-                              fast.data(), boxes_b, centres_b);
+      detail::face_boxes(positions, corners, begin, end, frame, slow.data(), boxes_a, centres_a);
+      detail::face_boxes_avx2(positions, corners, begin, end, frame, fast.data(), boxes_b,
+                              centres_b);
       ASSERT_TRUE(same_bits(slow.data(), fast.data(), slow.size() * sizeof slow[0]))
           << "faces " << begin << " .. " << end;
       ASSERT_TRUE(same_bits(&boxes_a, &boxes_b, sizeof boxes_a))
@@ -84,14 +62,13 @@ TEST(FaceBoxes, BothVersionsGiveTheSameRecordsBitForBit) {
 // largest), with the face index in lane 3 of lo and 0 in lane 3 of hi; the bounds are the boxes'
 // and the centres' (lo + hi) minima and maxima; nothing is written past the range.
 TEST(FaceBoxes, BaselineMatchesItsDefinition) {
-  std::mt19937_64 rng(3);
-  const Soup soup = make_soup(rng, 500);
+  const TriMesh soup = test::kernel_soup(500, 3);
   const detail::FrameMap frame{{2.0, -1.0, 0.5}, 1.0 / 60.0};
   const std::uint32_t begin = 17, end = 480;
   std::vector<detail::FaceBox> out(end - begin + 1);
   std::memset(static_cast<void*>(out.data()), 0xab, out.size() * sizeof out[0]);
   detail::LaneBounds boxes, centres;
-  detail::face_boxes(soup.positions.data(), soup.corners.data(), begin, end, frame, out.data(),
+  detail::face_boxes(&soup.positions[0].x, soup.faces[0].data(), begin, end, frame, out.data(),
                      boxes, centres);
   float box_lo[3], box_hi[3], centre_lo[3], centre_hi[3];
   for (int k = 0; k < 3; ++k) {
@@ -103,8 +80,7 @@ TEST(FaceBoxes, BaselineMatchesItsDefinition) {
     for (int k = 0; k < 3; ++k) {
       double lo = std::numeric_limits<double>::infinity(), hi = -lo;
       for (int corner = 0; corner < 3; ++corner) {
-        const double x =
-            (soup.positions[3 * soup.corners[3 * f + corner] + k] - frame.origin[k]) * frame.scale;
+        const double x = (soup.positions[soup.faces[f][corner]][k] - frame.origin[k]) * frame.scale;
         lo = std::min(lo, x);
         hi = std::max(hi, x);
       }

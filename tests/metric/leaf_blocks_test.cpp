@@ -10,60 +10,23 @@
 
 #include "metric/mesh.h"
 #include "metric/plane_bounds.h"
+#include "tests/support/shapes.h"
 
 namespace meshdev {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// A soup of triangles of every kind the margins tell apart: ordinary ones at several scales,
-// slivers past kMaxCullKappa, triangles with a repeated corner (|ab x ac| = 0) and ones too small
-// for kMinCullNormal2; corners shared between faces.
-struct Soup {
-  std::vector<double> positions;       // 3 per vertex
-  std::vector<std::uint32_t> corners;  // 3 per face
-};
-
-Soup make_soup(std::mt19937_64& rng, std::size_t faces) {
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  Soup s;
-  auto add_vertex = [&](double x, double y, double z) {
-    s.positions.insert(s.positions.end(), {x, y, z});
-    return static_cast<std::uint32_t>(s.positions.size() / 3 - 1);
-  };
-  for (std::size_t f = 0; f < faces; ++f) {
-    const double scale = std::pow(10.0, static_cast<int>(rng() % 9) - 6);  // 1e-6 .. 1e2
-    const double cx = 50 * unit(rng), cy = 50 * unit(rng), cz = 50 * unit(rng);
-    std::uint32_t v[3];
-    for (auto& id : v)
-      id = add_vertex(cx + scale * unit(rng), cy + scale * unit(rng), cz + scale * unit(rng));
-    switch (f % 5) {
-      case 1:  // a sliver: the third corner nearly on the line of the first two
-        s.positions[3 * v[2] + 0] = 0.5 * (s.positions[3 * v[0]] + s.positions[3 * v[1]]);
-        s.positions[3 * v[2] + 1] = 0.5 * (s.positions[3 * v[0] + 1] + s.positions[3 * v[1] + 1]);
-        s.positions[3 * v[2] + 2] =
-            0.5 * (s.positions[3 * v[0] + 2] + s.positions[3 * v[1] + 2]) + 1e-9 * scale;
-        break;
-      case 2:  // a repeated corner
-        v[2] = v[0];
-        break;
-      case 3:  // a corner of an earlier face
-        if (f > 0) v[1] = s.corners[3 * (f - 1)];
-        break;
-      default:
-        break;
-    }
-    s.corners.insert(s.corners.end(), {v[0], v[1], v[2]});
-  }
-  return s;
-}
-
 // Both versions give the same block, bit for bit, and the same sums, for every count of faces.
 TEST(LeafBlocks, BothVersionsGiveTheSameBlocksBitForBit) {
   if (simd_level() == SimdLevel::kBaseline) GTEST_SKIP() << "this CPU runs no AVX2";
+  // Ordinary triangles at several scales, slivers past kMaxCullKappa, repeated corners (|ab x ac| =
+  // 0), corners shared between faces: every kind the margins tell apart.
+  const TriMesh soup = test::kernel_soup(4000, 7);
+  const double* positions = &soup.positions[0].x;
+  const std::uint32_t* corners = soup.faces[0].data();
+  const auto faces = static_cast<std::uint32_t>(soup.faces.size());
   std::mt19937_64 rng(7);
-  const Soup soup = make_soup(rng, 4000);
-  const auto faces = static_cast<std::uint32_t>(soup.corners.size() / 3);
   const detail::FrameMap frames[] = {
       {{0.0, 0.0, 0.0}, 1.0}, {{1.5, -2.0, 30.0}, 1.0 / 70.0}, {{-3.0, 0.25, 7.0}, 1e3}};
   int margins_finite = 0, margins_infinite = 0;
@@ -76,10 +39,10 @@ TEST(LeafBlocks, BothVersionsGiveTheSameBlocksBitForBit) {
       detail::LeafBlock slow, fast;
       std::memset(&slow, 0xab, sizeof slow);
       std::memset(&fast, 0xcd, sizeof fast);
-      const detail::LeafBlockSums a = detail::fill_leaf_block(
-          soup.positions.data(), soup.corners.data(), ids, count, frame, slow);
-      const detail::LeafBlockSums b = detail::fill_leaf_block_avx2(
-          soup.positions.data(), soup.corners.data(), ids, count, frame, fast);
+      const detail::LeafBlockSums a =
+          detail::fill_leaf_block(positions, corners, ids, count, frame, slow);
+      const detail::LeafBlockSums b =
+          detail::fill_leaf_block_avx2(positions, corners, ids, count, frame, fast);
       ASSERT_EQ(std::memcmp(&slow, &fast, sizeof slow), 0)
           << "round " << round << ", count " << count;
       ASSERT_EQ(std::memcmp(&a.edge_sum, &b.edge_sum, sizeof(double)), 0) << "round " << round;
@@ -98,15 +61,14 @@ TEST(LeafBlocks, BothVersionsGiveTheSameBlocksBitForBit) {
 // 2^-18 (2 + kappa) from above within one float step (computed here in long double) or is +inf
 // exactly for the degenerate faces; the sums are the longest edges and the largest corner error.
 TEST(LeafBlocks, BaselineMatchesItsDefinition) {
-  std::mt19937_64 rng(11);
-  const Soup soup = make_soup(rng, 400);
+  const TriMesh soup = test::kernel_soup(400, 11);
   const detail::FrameMap frame{{2.0, -1.0, 0.5}, 1.0 / 60.0};
   for (std::uint32_t first = 0; first + 4 <= 400; first += 4) {
     const std::uint32_t count = 1 + first / 4 % 4;
     const std::uint32_t ids[4] = {first, first + 1, first + 2, first + 3};
     detail::LeafBlock block;
     const detail::LeafBlockSums sums = detail::fill_leaf_block(
-        soup.positions.data(), soup.corners.data(), ids, count, frame, block);
+        &soup.positions[0].x, soup.faces[0].data(), ids, count, frame, block);
     double edge_sum = 0, error2 = 0;
     for (std::uint32_t lane = 0; lane < 4; ++lane) {
       if (lane >= count) {
@@ -119,7 +81,7 @@ TEST(LeafBlocks, BaselineMatchesItsDefinition) {
       EXPECT_EQ(block.face[lane], ids[lane]);
       long double p[3][3];  // the rounded corners
       for (int c = 0; c < 3; ++c) {
-        const double* x = &soup.positions[3 * soup.corners[3 * ids[lane] + c]];
+        const double* x = &soup.positions[soup.faces[ids[lane]][c]].x;
         double e2 = 0;
         for (int k = 0; k < 3; ++k) {
           const double frame_x = (x[k] - frame.origin[k]) * frame.scale;

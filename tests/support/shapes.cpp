@@ -77,6 +77,37 @@ TriMesh icosphere(int levels) {
   return m;
 }
 
+TriMesh kernel_soup(std::uint32_t faces, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  TriMesh m;
+  for (std::uint32_t f = 0; f < faces; ++f) {
+    const double scale = std::pow(10.0, static_cast<int>(rng() % 9) - 6);  // 1e-6 .. 1e2
+    const Vec3 centre{50 * unit(rng), 50 * unit(rng), 50 * unit(rng)};
+    Triangle t;
+    for (auto& id : t) {
+      m.positions.push_back(centre + scale * Vec3{unit(rng), unit(rng), unit(rng)});
+      id = static_cast<std::uint32_t>(m.positions.size() - 1);
+    }
+    switch (f % 5) {
+      case 1:  // a sliver: the third corner nearly on the line of the first two
+        m.positions[t[2]] =
+            0.5 * (m.positions[t[0]] + m.positions[t[1]]) + Vec3{0, 0, 1e-9 * scale};
+        break;
+      case 2:  // a repeated corner
+        t[2] = t[0];
+        break;
+      case 3:  // a corner of the face before
+        if (f > 0) t[1] = m.faces[f - 1][0];
+        break;
+      default:
+        break;
+    }
+    m.faces.push_back(t);
+  }
+  return m;
+}
+
 TriMesh random_soup(int triangles, std::uint64_t seed, double degenerate_fraction) {
   std::mt19937_64 rng(seed);
   auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1p-53; };

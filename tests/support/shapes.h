@@ -24,6 +24,13 @@ TriMesh icosphere(int levels);
 // Random triangle soup in [0,1]^3 with a fixed seed (some triangles made degenerate on purpose).
 TriMesh random_soup(int triangles, std::uint64_t seed, double degenerate_fraction = 0.1);
 
+// Triangles for the build's four-lane kernels (metric/face_boxes.h, metric/leaf_blocks.h), seeded:
+// each at a scale from 1e-6 to 1e2 around a point up to 50 from the origin; face f with f % 5 == 1
+// a sliver (its third corner 1e-9 of its scale off the line of the first two: kappa past
+// kMaxCullKappa), == 2 a repeated corner (|ab x ac| = 0), == 3 a corner shared with the face
+// before. Unreferenced vertices are left in.
+TriMesh kernel_soup(std::uint32_t faces, std::uint64_t seed);
+
 // The same mesh moved by t.
 TriMesh translated(const TriMesh& mesh, const Vec3& t);
 
