@@ -34,9 +34,10 @@ struct FrameMap {
 
 // What a block adds to the build's totals.
 struct LeafBlockSums {
-  double edge_sum = 0;  // the faces' longest edges (frame units), summed in lane order
-  double corner_error2 =
-      0;  // the largest squared distance of a rounded corner from its frame point
+  // The faces' longest edges (frame units), summed in lane order.
+  double edge_sum = 0;
+  // The largest squared distance of a rounded corner from its frame point.
+  double corner_error2 = 0;
 };
 
 // Fills `out` with faces face_ids[0 .. count - 1] of a mesh given as raw arrays: `positions`, 3
