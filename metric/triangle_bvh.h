@@ -5,9 +5,10 @@
 // Build: binned SAH (16 bins) on the centres of the faces' boxes into a binary tree with leaves
 //        of at most 4 triangles (subtrees of at most 32 faces: sorted along the axis and split
 //        where SAH is least among the splits into full blocks of 4, which keeps leaf blocks
-//        full), then collapsed into 4-wide nodes (the inner child of largest area is opened in
-//        place until a node has 4 children, so the leaves stay in the face records' order and
-//        the leaf blocks are filled while one thread collapses). Boxes and triangle corners are
+//        full), then collapsed into 4-wide nodes with the least summed half area (a dynamic
+//        programme whose plans the splits make, metric/wide_collapse.h; children kept in order,
+//        so the leaves stay in the face records' order and the leaf blocks are filled while one
+//        thread collapses). Boxes and triangle corners are
 //        stored in single precision, 4 per block (structure of arrays), in a frame centred on the
 //        mesh and scaled to [-1, 1]. The binning works on 32-byte face records (float box rounded
 //        outwards, face index) partitioned in place, with SSE box unions. O(F log F) time,
