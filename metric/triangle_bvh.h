@@ -2,22 +2,22 @@
 // A 4-wide bounding-volume hierarchy over a triangle mesh for exact nearest-point queries with
 // ties.
 //
-// Build: binned SAH (16 bins) on the centres of the faces' boxes into a binary tree with leaves
-//        of at most 4 triangles (subtrees of at most 32 faces: sorted along the axis and split
-//        where SAH is least among the splits into full blocks of 4, which keeps leaf blocks
-//        full), then collapsed into 4-wide nodes with the least summed half area (a dynamic
-//        programme whose plans the splits make, metric/wide_collapse.h; children kept in order,
-//        so the leaves stay in the face records' order and the leaf blocks are filled while one
-//        thread collapses). Boxes and triangle corners are
-//        stored in single precision, 4 per block (structure of arrays), in a frame centred on the
-//        mesh and scaled to [-1, 1]. The binning works on 32-byte face records (float box rounded
-//        outwards, face index) partitioned in place, with SSE box unions. O(F log F) time,
-//        subtrees and leaf blocks built in parallel (OpenMP); memory_bytes() is about 55-62
-//        bytes per face. Meshes of 4,096 faces or more stored in no spatial order (probed on
-//        pairs of consecutive faces) are instead sorted along a Morton curve (30-bit codes,
-//        radix sort on the team) and split above 32 faces where their codes' highest differing
-//        bit changes (an LBVH; Lauterbach et al. 2009), below as above: on such orders binning
-//        costs most and the trees query within a few per cent of SAH's (morton_splits()).
+// Build: binned SAH (16 bins) on the centres of the faces' boxes into a binary tree with leaves of
+//        at most 4 triangles (subtrees of at most 32 faces: sorted along the axis and split where
+//        SAH is least among the splits into full blocks of 4, which keeps leaf blocks full), then
+//        collapsed into 4-wide nodes with the least summed half area (a dynamic programme whose
+//        plans the splits make, metric/wide_collapse.h; children kept in order, so the leaves stay
+//        in the face records' order and the leaf blocks are filled while one thread collapses).
+//        Boxes and triangle corners are stored in single precision, 4 per block (structure of
+//        arrays), in a frame centred on the mesh and scaled to [-1, 1]. The binning works on
+//        32-byte face records (float box rounded outwards, face index) partitioned in place, with
+//        SSE box unions. O(F log F) time, subtrees and leaf blocks built in parallel (OpenMP);
+//        memory_bytes() is about 55-60 bytes per face. Meshes of 4,096 faces or more stored in no
+//        spatial order (probed on pairs of consecutive faces) are instead sorted along a Morton
+//        curve (30-bit codes, radix sort on the team) and split above 32 faces where their codes'
+//        highest differing bit changes (an LBVH; Lauterbach et al. 2009), below as above: on such
+//        orders binning costs most and the trees query within a few per cent of SAH's
+//        (morton_splits()).
 // Query: depth-first, nearer child first, starting from the upper bound of hint.start_face. Four
 //        boxes or four triangles are tested per step with SSE (metric/simd4.h). A box or a
 //        triangle is skipped only when a conservative single-precision lower bound on its
