@@ -742,17 +742,12 @@ void TriangleBvh::build(int threads) {
   nodes_.reserve(used_nodes.load() / 3 + 1);
   std::uint32_t next_block = 0;  // blocks numbered so far, depth first
   depth_ = 0;
-  // Appends to kids, in order, the roots of the cover of binary node bi by at most k roots that
-  // its plan gives.
-  auto cover = [&](auto&& self, std::uint32_t bi, std::uint32_t k, std::uint32_t* kids,
-                   int& count) -> void {
-    const std::uint32_t share = tree[bi].leaf() ? 0 : detail::plan_cover_share(tree[bi].count, k);
-    if (share == 0) {
-      kids[count++] = bi;
-      return;
-    }
-    self(self, tree[bi].index, share, kids, count);
-    self(self, tree[bi].index + 1, k - share, kids, count);
+  // A binary node's children and collapse plan, for metric/wide_collapse.h's walks.
+  auto inner = [&](std::uint32_t bi, std::uint32_t& left, std::uint32_t& right,
+                   std::uint32_t& plan) {
+    if (tree[bi].leaf()) return false;
+    left = tree[bi].index, right = tree[bi].index + 1, plan = tree[bi].count;
+    return true;
   };
   auto collapse = [&](auto&& self, std::uint32_t bi, int depth) -> std::uint32_t {
     depth_ = std::max(depth_, depth);
@@ -763,9 +758,7 @@ void TriangleBvh::build(int threads) {
     assert(tree[bi].count & detail::kCollapsePlanned);
     std::uint32_t kids[4] = {0, 0, 0, 0};
     int count = 0;
-    const std::uint32_t share = detail::plan_wide_share(tree[bi].count);
-    cover(cover, tree[bi].index, share, kids, count);
-    cover(cover, tree[bi].index + 1, 4 - share, kids, count);
+    detail::for_each_wide_child(inner, bi, [&](std::uint32_t kid) { kids[count++] = kid; });
     assert(count >= 2 && count <= 4);
     const auto id = static_cast<std::uint32_t>(nodes_.size());
     nodes_.emplace_back();

@@ -38,4 +38,31 @@ inline std::uint32_t plan_wide_share(std::uint32_t plan) {
   return plan & 3u;
 }
 
+// Calls emit(root) for each root, in order, of the cover of binary node `node` by at most k roots
+// that the plans give. inner(node, left, right, plan): false for a leaf; for an inner node, true
+// with its children and plan set. O(k).
+template <class Inner, class Emit>
+void for_each_cover_root(const Inner& inner, std::uint32_t node, std::uint32_t k,
+                         const Emit& emit) {
+  std::uint32_t left = 0, right = 0, plan = 0;
+  const std::uint32_t share = inner(node, left, right, plan) ? plan_cover_share(plan, k) : 0;
+  if (share == 0) {
+    emit(node);
+    return;
+  }
+  for_each_cover_root(inner, left, share, emit);
+  for_each_cover_root(inner, right, k - share, emit);
+}
+
+// Calls emit(child) for each child, in order, of the wide node that inner binary node `node`
+// becomes (2 to 4 of them). Precondition: inner(node, ...) is true. O(1).
+template <class Inner, class Emit>
+void for_each_wide_child(const Inner& inner, std::uint32_t node, const Emit& emit) {
+  std::uint32_t left = 0, right = 0, plan = 0;
+  inner(node, left, right, plan);
+  const std::uint32_t share = plan_wide_share(plan);
+  for_each_cover_root(inner, left, share, emit);
+  for_each_cover_root(inner, right, 4 - share, emit);
+}
+
 }  // namespace meshdev::detail

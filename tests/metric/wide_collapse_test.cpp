@@ -60,37 +60,33 @@ detail::CollapseCosts plan_tree(const BinaryTree& t, int node, std::vector<std::
   return out;
 }
 
-// The collapse the plans give, walked as TriangleBvh::build walks it: its cost (summed half
-// areas of its wide nodes), its wide nodes' child counts and its leaves in order.
+// The collapse the plans give, walked with metric/wide_collapse.h's walks as TriangleBvh::build
+// walks it: its cost (summed half areas of its wide nodes), its wide nodes' child counts and its
+// leaves in order.
 struct Collapse {
   double cost = 0;
   std::vector<int> child_counts;
   std::vector<int> leaves;
 };
-void cover(const BinaryTree& t, const std::vector<std::uint32_t>& plan, int node, std::uint32_t k,
-           std::vector<int>& roots) {
-  const BinaryTree::Node& n = t.nodes[static_cast<std::size_t>(node)];
-  const std::uint32_t share =
-      n.leaf() ? 0 : detail::plan_cover_share(plan[static_cast<std::size_t>(node)], k);
-  if (share == 0) {
-    roots.push_back(node);
-    return;
-  }
-  cover(t, plan, n.left, share, roots);
-  cover(t, plan, n.right, k - share, roots);
-}
 void walk(const BinaryTree& t, const std::vector<std::uint32_t>& plan, int node, Collapse& c) {
   const BinaryTree::Node& n = t.nodes[static_cast<std::size_t>(node)];
   if (n.leaf()) {
     c.leaves.push_back(node);
     return;
   }
+  auto inner = [&](std::uint32_t id, std::uint32_t& left, std::uint32_t& right, std::uint32_t& p) {
+    const BinaryTree::Node& x = t.nodes[id];
+    if (x.leaf()) return false;
+    left = static_cast<std::uint32_t>(x.left), right = static_cast<std::uint32_t>(x.right);
+    p = plan[id];
+    return true;
+  };
   const std::uint32_t share = detail::plan_wide_share(plan[static_cast<std::size_t>(node)]);
   ASSERT_GE(share, 1u);
   ASSERT_LE(share, 3u);
   std::vector<int> kids;
-  cover(t, plan, n.left, share, kids);
-  cover(t, plan, n.right, 4 - share, kids);
+  detail::for_each_wide_child(inner, static_cast<std::uint32_t>(node),
+                              [&](std::uint32_t kid) { kids.push_back(static_cast<int>(kid)); });
   c.cost += n.half_area;
   c.child_counts.push_back(static_cast<int>(kids.size()));
   for (int kid : kids) walk(t, plan, kid, c);
