@@ -71,17 +71,22 @@ constexpr double kMaxExtent = 1e140;
 // at most kMaxBlocks leaf blocks), kMinBlockPacket to kMinPacket - 1 (samples sparse on the target)
 // a block packet (if their reach holds at most kMaxBlocks leaf blocks). The rest are answered one
 // by one. With guessed reaches (below) the extent no longer widens the reach, and packets grew:
-// 1 mean edge (block packets 2) before, 3 with the cut at 2 from 16 queries now
+// 1 mean edge (block packets 2) before, 3 with the cut at 2 from 16 queries then
 // (peer_compare --threads 1, M samples/s: torus100k -> torus1m 2.38-2.44 -> 2.67-2.78,
 // buildings_s40k -> buildings in face order 3.49-3.51 -> 4.43-4.54, torus1m -> 100k 3.95-4.10 ->
 // 4.46-4.47; 2 mean edges for both kinds was 2-4 % faster on the dense pairs but slower on the
 // sparse ones; docs/performance-log.md §3). The minimum sizes went from 8 / 3 to 4 / 2 in the same
 // way: buildings_s40k -> buildings 4.49-4.53 -> 4.85-4.93, torus100k -> torus1m and armadillo
-// +2-3 %, the rest within 1 %.
+// +2-3 %, the rest within 1 %. Since then the engine changed, and packets sparse on B gained from
+// growing further: 4 mean edges until they hold 24 queries instead of 3 until 16 (`peer_compare
+// A B 1000000 --ab 8|12`, 1 / 2 threads: torus100k -> 1m 1.021 / 1.023 and 1.022 / 1.026, ->
+// torus1m_shuffled 1.021 / 1.017, the other five pairs 0.995-1.010; 4 mean edges throughout gave
+// torus100k -> 1m 1.026 / 1.035 but torus1m -> 100k 0.950 / 0.959, whose dense packets hold 44
+// queries; docs/performance-log.md §3, forty-fourth session).
 constexpr std::size_t kPacketSize = 64;
 constexpr std::size_t kMinPacket = 4;
-constexpr double kPacketExtent = 3.0;
-constexpr std::size_t kFullPacket = 16;
+constexpr double kPacketExtent = 4.0;
+constexpr std::size_t kFullPacket = 24;
 constexpr double kFullPacketExtent = 2.0;
 constexpr std::size_t kMinBlockPacket = 2;
 // Samples far from B give packets whose reach holds many leaf blocks; beyond kMaxBlocks their

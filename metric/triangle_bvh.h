@@ -32,8 +32,8 @@
 //   normalised before squaring, so nothing that matters underflows); slivers (kappa > 1e6),
 //   triangles under ~1e-5 of the mesh and queries beyond 1e12 mesh sizes are never culled by it;
 //   meshes under 1e-140 or over 1e140 in size are searched without culling (double underflow).
-// Batches (find_batch): consecutive queries within about kPacketExtent (3) typical triangles of
-//        each other (2 once there are 16) form a packet of up to 64. The packet's centre query
+// Batches (find_batch): consecutive queries within about kPacketExtent (4) typical triangles of
+//        each other (2 once there are 24) form a packet of up to 64. The packet's centre query
 //        runs as above and gives every other query an upper bound (triangle inequality); one
 //        traversal with the packet's box collects the faces within reach of any of them; each
 //        query then tests only those, with a float lower bound from precomputed unit plane and
