@@ -42,13 +42,8 @@ void bins_along(const FaceBox* boxes, std::uint32_t count, double lo, double sca
     const int packed = _mm_cvtsi128_si32(b);
     std::memcpy(bins + i, &packed, 4);
   }
-  const int top = bin_count - 1;
-  for (; i < count; ++i) {
-    float key = boxes[i].lo[kAxis] + boxes[i].hi[kAxis];
-    if (!(key == key)) key = 0.0f;
-    const double t = (key - lo) * scale;
-    bins[i] = static_cast<std::uint8_t>(t >= top ? top : t > 0.0 ? static_cast<int>(t) : 0);
-  }
+  // The last count % 4 faces: the baseline (not inline, compiled without AVX2).
+  centre_bins(boxes + i, count - i, kAxis, lo, scale, bin_count, bins + i);
 }
 
 }  // namespace

@@ -571,9 +571,11 @@ void TriangleBvh::build(int threads) {
       const double lo = centres.lo[axis];
       const double scale = kBins / axis_extent;  // finite: axis_extent >= the least float
       // The faces' bins first, in a pass of their own (metric/centre_bins.h), four faces per
-      // step where the CPU runs AVX2: torus1m's build 1.07-1.10 / 1.06-1.09 faster on 1 / 2
-      // threads, torus100k's 1.10 / 1.09, the same trees (`peer_compare A B 1000000 --ab 8
-      // --ab-build`, docs/performance-log.md §3). Meshes built by Morton splits bin no faces.
+      // step where the CPU runs AVX2, the same trees: torus1m's build 1.085-1.100 / 1.061-1.062
+      // faster on 1 / 2 threads than the bins computed face by face inside the loops below, and
+      // 1.072 / 1.086 (torus100k 1.102 / 1.087) than the same pass in scalar code (`peer_compare
+      // A B 1000000 --ab 8 --ab-build`, docs/performance-log.md §3). Meshes built by Morton
+      // splits bin no faces.
       // Faces near in the mesh's order are often near in space and fall in the bin of the face
       // before. Where the parent's faces did so in runs of kMinRun or more on average (and at
       // the root), runs are gathered in registers and added to their bin once, instead of a load
