@@ -32,25 +32,33 @@ LeafBlockSums fill_leaf_block_avx2(const double* positions, const std::uint32_t*
   constexpr std::uint32_t kNone = 0xffffffffu;  // kNoFace (metric/mesh.h)
   // Lanes from count on repeat lane 0's face: their values equal lane 0's, so they change no
   // maximum, and they are left out of the sum and zeroed in the block.
-  alignas(16) std::uint32_t face[4];
-  for (std::uint32_t lane = 0; lane < 4; ++lane) face[lane] = face_ids[lane < count ? lane : 0];
-  const __m256i f = _mm256_cvtepu32_epi64(_mm_load_si128(reinterpret_cast<const __m128i*>(face)));
-  const __m256i f3 = _mm256_add_epi64(_mm256_add_epi64(f, f), f);
+  const std::uint32_t* tri[4];  // the lanes' corner indices
+  for (std::uint32_t lane = 0; lane < 4; ++lane)
+    tri[lane] = corners + 3 * std::size_t{face_ids[lane < count ? lane : 0]};
   const __m128 used = _mm_castsi128_ps(
       _mm_cmpgt_epi32(_mm_set1_epi32(static_cast<int>(count)), _mm_setr_epi32(0, 1, 2, 3)));
 
+  // Each corner's x, y, z in one masked load (the fourth lane neither read nor faulted), the four
+  // lanes' loads then transposed: torus1m's build 1.087 / 1.091 faster on 1 / 2 threads than
+  // with a gather per axis and corner, torus1m_shuffled 1.131 / 1.084, buildings 1.110 / 1.094
+  // (`peer_compare A B 1000000 --ab 8 --ab-build`, the same blocks; docs/performance-log.md §3).
+  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
   __m256d c[3][3];  // the float corners, exactly, in double: [corner][axis]
   __m256d error2 = _mm256_setzero_pd();
   for (int corner = 0; corner < 3; ++corner) {
-    const __m128i v32 = _mm256_i64gather_epi32(reinterpret_cast<const int*>(corners),
-                                               _mm256_add_epi64(f3, _mm256_set1_epi64x(corner)), 4);
-    const __m256i v = _mm256_cvtepu32_epi64(v32);
-    const __m256i v3 = _mm256_add_epi64(_mm256_add_epi64(v, v), v);
+    __m256d p[4];
+    for (int lane = 0; lane < 4; ++lane)
+      p[lane] = _mm256_maskload_pd(positions + 3 * std::size_t{tri[lane][corner]}, xyz);
+    const __m256d x01z01 = _mm256_unpacklo_pd(p[0], p[1]);
+    const __m256d y01 = _mm256_unpackhi_pd(p[0], p[1]);
+    const __m256d x23z23 = _mm256_unpacklo_pd(p[2], p[3]);
+    const __m256d y23 = _mm256_unpackhi_pd(p[2], p[3]);
+    const __m256d axis[3] = {_mm256_permute2f128_pd(x01z01, x23z23, 0x20),
+                             _mm256_permute2f128_pd(y01, y23, 0x20),
+                             _mm256_permute2f128_pd(x01z01, x23z23, 0x31)};
     __m256d err2 = _mm256_setzero_pd();
     for (int k = 0; k < 3; ++k) {
-      const __m256d p =
-          _mm256_i64gather_pd(positions, _mm256_add_epi64(v3, _mm256_set1_epi64x(k)), 8);
-      const __m256d x = _mm256_mul_pd(_mm256_sub_pd(p, _mm256_set1_pd(frame.origin[k])),
+      const __m256d x = _mm256_mul_pd(_mm256_sub_pd(axis[k], _mm256_set1_pd(frame.origin[k])),
                                       _mm256_set1_pd(frame.scale));
       const __m128 r = _mm256_cvtpd_ps(x);  // to nearest, as static_cast<float>
       _mm_store_ps(out.corner[corner][k], _mm_and_ps(r, used));

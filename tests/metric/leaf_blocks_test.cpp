@@ -8,6 +8,9 @@
 #include <random>
 #include <vector>
 
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include "metric/mesh.h"
 #include "metric/plane_bounds.h"
 #include "tests/support/shapes.h"
@@ -54,6 +57,33 @@ TEST(LeafBlocks, BothVersionsGiveTheSameBlocksBitForBit) {
   // Both kinds of lane were compared.
   EXPECT_GT(margins_finite, 1000);
   EXPECT_GT(margins_infinite, 1000);
+}
+
+// The AVX2 version reads each corner's three coordinates and nothing after them: a mesh whose last
+// vertex ends where an unreadable page begins gives the same block as the baseline, no fault.
+TEST(LeafBlocks, AvxVersionReadsNothingPastTheLastVertex) {
+  if (simd_level() == SimdLevel::kBaseline) GTEST_SKIP() << "this CPU runs no AVX2";
+  const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+  void* map = mmap(nullptr, 2 * page, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(map, MAP_FAILED);
+  auto* bytes = static_cast<unsigned char*>(map);
+  ASSERT_EQ(mprotect(bytes + page, page, PROT_NONE), 0);
+  constexpr std::size_t kVertices = 4;
+  auto* positions = reinterpret_cast<double*>(bytes + page) - 3 * kVertices;
+  const double corners_xyz[3 * kVertices] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.25, 0.5, 2};
+  std::memcpy(positions, corners_xyz, sizeof corners_xyz);
+  const std::uint32_t corners[] = {0, 1, 3, 3, 2, 1, 1, 3, 0, 2, 0, 3};
+  const std::uint32_t ids[] = {0, 1, 2, 3};
+  const detail::FrameMap frame{{0.5, 0.5, 1.0}, 0.5};
+  for (std::uint32_t count = 1; count <= 4; ++count) {
+    detail::LeafBlock slow, fast;
+    std::memset(&slow, 0xab, sizeof slow);
+    std::memset(&fast, 0xcd, sizeof fast);
+    detail::fill_leaf_block(positions, corners, ids, count, frame, slow);
+    detail::fill_leaf_block_avx2(positions, corners, ids, count, frame, fast);
+    EXPECT_EQ(std::memcmp(&slow, &fast, sizeof slow), 0) << "count " << count;
+  }
+  munmap(map, 2 * page);
 }
 
 // The baseline against the definition, face by face: the corners are the frame coordinates
