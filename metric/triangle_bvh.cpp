@@ -740,8 +740,12 @@ void TriangleBvh::build(int threads) {
   const std::size_t blocks = leaf_first.size() - 1;
 
   // Collapse into 4-wide nodes (recursive: the binary depth is bounded) by the plans the splits
-  // made (metric/wide_collapse.h: the least summed half area of the wide nodes). One thread
-  // collapses while the others fill the leaf blocks, then joins them. The greedy collapse it
+  // made (metric/wide_collapse.h: the least summed half area of the wide nodes), on one thread
+  // while the others wait, then the leaf blocks on the whole team. Beside the leaf blocks the
+  // collapse took twice as long (torus1m, 2 threads: 11.5 ms instead of 5, the two phases 14.5
+  // ms instead of 11.7; both fight for the memory since the blocks read their corners with
+  // loads instead of gathers): builds 1.061 faster on torus1m, 1.27 on buildings.ply (medians of
+  // 30 alternating builds in one process, docs/performance-log.md §3). The greedy collapse it
   // replaced (the inner child of largest area opened until a node had 4 children) left nodes of
   // 2 leaves under most nodes of small subtrees: torus1m 126,627 nodes, now 107,485 (60.5 -> 58.4
   // bytes per face), its queries from torus100k 1.0045-1.0062 / 1.0060-1.0151 faster on 1 / 2
@@ -798,7 +802,7 @@ void TriangleBvh::build(int threads) {
   constexpr std::int64_t kBlocksPerTask = 1024;
 #pragma omp parallel num_threads(team)
   {
-#pragma omp single nowait
+#pragma omp single
     root_ = collapse(collapse, 0, 1);
 #pragma omp for schedule(dynamic, kBlocksPerTask) reduction(max : corner_error2)
     for (std::int64_t l = 0; l < leaf_count; ++l) {

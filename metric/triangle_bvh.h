@@ -7,7 +7,7 @@
 //        SAH is least among the splits into full blocks of 4, which keeps leaf blocks full), then
 //        collapsed into 4-wide nodes with the least summed half area (a dynamic programme whose
 //        plans the splits make, metric/wide_collapse.h; children kept in order, so the leaves stay
-//        in the face records' order and the leaf blocks are filled while one thread collapses).
+//        in the face records' order and the leaf blocks are numbered as the records are).
 //        Boxes and triangle corners are stored in single precision, 4 per block (structure of
 //        arrays), in a frame centred on the mesh and scaled to [-1, 1]. The binning works on
 //        32-byte face records (float box rounded outwards, face index) partitioned in place, with
