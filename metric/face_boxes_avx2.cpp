@@ -61,13 +61,20 @@ __m128 round_up(__m256d x) {
 
 void face_boxes_avx2(const double* positions, const std::uint32_t* corners, std::uint32_t begin,
                      std::uint32_t end, const FrameMap& frame, FaceBox* out, LaneBounds& boxes,
-                     LaneBounds& centres) {
+                     LaneBounds& centres, CornerBounds& corner_bounds) {
   constexpr std::uint32_t kAhead = 8;  // as face_boxes
   __m128 box_lo = _mm_load_ps(boxes.lo), box_hi = _mm_load_ps(boxes.hi);
   __m128 centre_lo = _mm_load_ps(centres.lo), centre_hi = _mm_load_ps(centres.hi);
   const __m256d origin[3] = {_mm256_set1_pd(frame.origin[0]), _mm256_set1_pd(frame.origin[1]),
                              _mm256_set1_pd(frame.origin[2])};
   const __m256d scale = _mm256_set1_pd(frame.scale);
+  // The corners' own coordinates: min_pd / max_pd keep the second operand where the first is
+  // NaN or both are equal, as BoundingBox::extend keeps its bound.
+  __m256d corner_lo[3], corner_hi[3];
+  for (int k = 0; k < 3; ++k) {
+    corner_lo[k] = _mm256_set1_pd(corner_bounds.lo[k]);
+    corner_hi[k] = _mm256_set1_pd(corner_bounds.hi[k]);
+  }
   std::uint32_t f = begin;
   for (; f + 4 <= end; f += 4) {
     const std::uint32_t* ids = corners + 3 * std::size_t{f};
@@ -81,6 +88,8 @@ void face_boxes_avx2(const double* positions, const std::uint32_t* corners, std:
         p[lane] = positions + 3 * std::size_t{ids[3 * lane + corner]};
       for (int k = 0; k < 3; ++k) {
         const __m256d v = _mm256_setr_pd(p[0][k], p[1][k], p[2][k], p[3][k]);
+        corner_lo[k] = _mm256_min_pd(v, corner_lo[k]);
+        corner_hi[k] = _mm256_max_pd(v, corner_hi[k]);
         const __m256d x = _mm256_mul_pd(_mm256_sub_pd(v, origin[k]), scale);
         lo[k] = corner == 0 ? x : min_as_std(lo[k], x);
         hi[k] = corner == 0 ? x : max_as_std(hi[k], x);
@@ -108,9 +117,19 @@ void face_boxes_avx2(const double* positions, const std::uint32_t* corners, std:
   _mm_store_ps(boxes.hi, box_hi);
   _mm_store_ps(centres.lo, centre_lo);
   _mm_store_ps(centres.hi, centre_hi);
+  for (int k = 0; k < 3; ++k) {
+    alignas(32) double lanes_lo[4], lanes_hi[4];
+    _mm256_store_pd(lanes_lo, corner_lo[k]);
+    _mm256_store_pd(lanes_hi, corner_hi[k]);
+    for (int lane = 0; lane < 4; ++lane) {
+      if (lanes_lo[lane] < corner_bounds.lo[k]) corner_bounds.lo[k] = lanes_lo[lane];
+      if (lanes_hi[lane] > corner_bounds.hi[k]) corner_bounds.hi[k] = lanes_hi[lane];
+    }
+  }
   // The last faces (fewer than four) one at a time: the baseline's own code (not inline, so not
   // compiled here).
-  if (f < end) face_boxes(positions, corners, f, end, frame, out + (f - begin), boxes, centres);
+  if (f < end)
+    face_boxes(positions, corners, f, end, frame, out + (f - begin), boxes, centres, corner_bounds);
 }
 
 }  // namespace meshdev::detail

@@ -1,7 +1,5 @@
 #include "metric/nearest_point.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -91,23 +89,24 @@ const TieOptions& checked(const TieOptions& ties) {
 
 FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres,
                              int threads)
-    : mesh(&m),
-      box(corner_bounding_box(m, threads)),
-      tie_relative(std::max(checked(ties).relative, kMinTieRelative)) {
+    : FaceEvaluator(m, ties, corner_bounding_box(m, threads), position_bounding_box(m, threads),
+                    with_spheres) {}
+
+FaceEvaluator::FaceEvaluator(const TriMesh& m, const TieOptions& ties,
+                             const BoundingBox& corner_box, const BoundingBox& position_box,
+                             bool with_spheres)
+    : mesh(&m), box(corner_box), tie_relative(std::max(checked(ties).relative, kMinTieRelative)) {
   const double diag = box.diagonal();
   tie_absolute = ties.absolute_fraction * diag;
   // Sample points far from the origin carry the rounding of their absolute coordinates (about
   // 1e-16 of their magnitude), so the identical-triangle check must look that far. It is only a
-  // shortcut: the check itself requires bitwise-identical corners. (A maximum: the same on any
-  // team; NaN coordinates are skipped as std::max skips them.)
+  // shortcut: the check itself requires bitwise-identical corners. The magnitude is the largest
+  // |coordinate| of any vertex (NaN skipped), read off the box of all vertices.
   double magnitude = 0.0;
-  const auto vertices = static_cast<std::int64_t>(m.positions.size());
-  const int team = threads > 0 ? threads : omp_get_max_threads();
-#pragma omp parallel for num_threads(team) reduction(max : magnitude) schedule(static)
-  for (std::int64_t v = 0; v < vertices; ++v) {
-    const Vec3& p = m.positions[static_cast<std::size_t>(v)];
-    magnitude = std::max({magnitude, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-  }
+  for (int k = 0; k < 3; ++k)
+    if (position_box.min[k] <= position_box.max[k])  // an axis whose every coordinate is NaN: none
+      magnitude =
+          std::max({magnitude, std::fabs(position_box.min[k]), std::fabs(position_box.max[k])});
   const double reach = 1e-9 * diag + 1e-14 * magnitude;
   exact_check_sq = reach * reach;
 #if defined(MESHDEV_X86_KERNELS)

@@ -156,6 +156,11 @@ struct FaceEvaluator {
   // InvalidInput for tie tolerances that are negative or not finite (TieOptions).
   FaceEvaluator(const TriMesh& m, const TieOptions& ties, bool with_spheres = true,
                 int threads = 0);
+  // The same from the mesh's boxes, for a caller that has them: `corner_box`, the box of the
+  // referenced vertices (corner_bounding_box); `position_box`, the box of all vertices
+  // (position_bounding_box). O(F) with spheres, else O(1).
+  FaceEvaluator(const TriMesh& m, const TieOptions& ties, const BoundingBox& corner_box,
+                const BoundingBox& position_box, bool with_spheres);
   SurfaceHit evaluate(const Vec3& p, std::uint32_t face, const QueryHint& hint) const;
   // evaluate(*p[l], face[l], *hint[l]) for the lanes l < lanes (1 <= lanes <= 4) into *out[l], bit
   // for bit: the face regions four at a time where the CPU runs AVX2 (face_interior_x4), the other

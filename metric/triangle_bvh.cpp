@@ -349,50 +349,49 @@ std::uint64_t next_id() {
 
 }  // namespace
 
-TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
-    : eval_(target, ties, /*with_spheres=*/false, threads),
-      kernels_(&plane_kernels(simd_level())),
-      avx_gather_(simd_level() != SimdLevel::kBaseline),
-      id_(next_id()),
-      check_reach_(std::sqrt(eval_.exact_check_sq)) {
-  build(threads);
-}
+namespace detail {
 
-std::size_t TriangleBvh::memory_bytes() const {
-  return nodes_.size() * sizeof(Node) + leaves_.size() * sizeof(Leaf);
-}
+// The build's first step, before the evaluator (TriangleBvh's delegating constructor): the float
+// frame and the face records.
+struct FaceRecords {
+  std::unique_ptr<FaceBox[]> prims;  // one per face, in face order
+  LaneBounds boxes, centres;         // their boxes' and (twice) their centres' bounds
+  BoundingBox corner_box;            // of the referenced vertices (corner_bounding_box)
+  BoundingBox position_box;          // of all vertices (position_bounding_box)
+  FrameMap frame;                    // centred on corner_box, its largest half extent scaled to 1
+  bool cull_scale = true;            // the frame's extent within [kMinExtent, kMaxExtent]
+};
 
-void TriangleBvh::build(int threads) {
-  const TriMesh& m = *eval_.mesh;
-  const auto n = static_cast<std::uint32_t>(m.faces.size());
-  assert(n > 0);
+}  // namespace detail
 
-  // The float frame: centred on the bounding box, the largest half extent scaled to 1.
-  const BoundingBox& bbox = eval_.box;
-  origin_ = 0.5 * (bbox.min + bbox.max);
+namespace {
+
+// The float frame of a box: centred on it, the largest half extent scaled to 1. Squared
+// distances in double underflow (or overflow) for meshes this small (or large), so faces far
+// apart in the frame can tie at a squared distance of 0 (or infinity) in the oracle's
+// arithmetic: such meshes are searched without culling (cull = false).
+void set_frame(const BoundingBox& bbox, detail::FrameMap& frame, bool& cull) {
+  const Vec3 origin = 0.5 * (bbox.min + bbox.max);
   const Vec3 half = 0.5 * (bbox.max - bbox.min);
   const double extent = std::max({half.x, half.y, half.z});
-  scale_ = extent > 0.0 && std::isfinite(1.0 / extent) ? 1.0 / extent : 1.0;
-  // Squared distances in double underflow (or overflow) for meshes this small (or large), so
-  // faces far apart in the frame can tie at a squared distance of 0 (or infinity) in the
-  // oracle's arithmetic: such meshes are searched without culling.
-  cull_scale_ = extent >= kMinExtent && extent <= kMaxExtent;
-  const int team = threads > 0 ? threads : omp_get_max_threads();
-  // A vertex in the float frame (in double), computed where it is read (the face records, the
-  // leaf blocks): a stored copy of the frame was 24 bytes per vertex written in a pass of its own
-  // (torus1m: 12 MB; the same trees, docs/performance-log.md §3, twenty-seventh session).
-  const detail::FrameMap frame_map{{origin_.x, origin_.y, origin_.z}, scale_};
-  // Scratch arrays are allocated uninitialised and first written by the threads that use them.
+  frame = {{origin.x, origin.y, origin.z},
+           extent > 0.0 && std::isfinite(1.0 / extent) ? 1.0 / extent : 1.0};
+  cull = extent >= kMinExtent && extent <= kMaxExtent;
+}
 
-  // Binary SAH tree over the face boxes (float frame).
-  std::unique_ptr<Prim[]> prims(new Prim[n]);
-  // The bin of the face at a position while its range is split; once a leaf is made of a range,
-  // 1 at the range's first position and 0 at the others (every position is in one leaf, so after
-  // the splits it marks where the leaves start, in the order of the face records).
-  std::unique_ptr<std::uint8_t[]> bin_at(new std::uint8_t[n]);
-  // The root's box and centre box are gathered here, per thread, and merged (min and max: the same
-  // for any team), instead of in a pass of the root's split on one thread.
-  std::vector<Bounds> part_bounds(static_cast<std::size_t>(team)), part_centres(part_bounds);
+// The face records of `m` on `threads` OpenMP threads (0: the default). They are made in the
+// frame of the box of all vertices (read in order, 0.3 ms for torus1m on 2 threads); the records
+// pass, which reads every face's corners anyway, gives the box of the referenced vertices, which
+// the frame is defined by. Where the two boxes differ (a vertex no face uses lies outside the
+// others), the records are made again in the second one's frame. That box took a pass of its own
+// through the faces before (corner_bounding_box, 2.0 ms of torus1m's 70 ms build on 2 threads):
+// builds now 2-3 % faster (torus1m on 1 and 2 threads, buildings.ply on 2; the least of 15
+// builds in each of 3-5 alternating processes, docs/performance-log.md §3). Precondition: m has
+// faces. O(F / threads).
+detail::FaceRecords face_records(const TriMesh& m, int threads) {
+  const auto n = static_cast<std::uint32_t>(m.faces.size());
+  assert(n > 0);
+  const int team = threads > 0 ? threads : omp_get_max_threads();
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Triangle) == 3 * sizeof(std::uint32_t),
                 "the face records and leaf blocks read positions and faces as raw arrays");
   const double* const positions = &m.positions[0].x;
@@ -402,31 +401,105 @@ void TriangleBvh::build(int threads) {
 #else
   constexpr bool avx2 = false;
 #endif
+  detail::FaceRecords r;
+  r.position_box = position_bounding_box(m, team);
+  // Allocated uninitialised and first written by the threads that use it.
+  r.prims.reset(new Prim[n]);
+  std::vector<detail::LaneBounds> part_boxes(static_cast<std::size_t>(team)),
+      part_centres(part_boxes);
+  std::vector<detail::CornerBounds> part_corners(static_cast<std::size_t>(team));
   // The face records four at a time in AVX2 lanes where the CPU has them (metric/face_boxes.h:
   // torus1m's build 1.088 / 1.081 faster on 1 / 2 threads, torus1m_shuffled 1.095 / 1.117,
   // buildings 1.126 / 1.081; `peer_compare A B 1000000 --ab 6 --ab-build`, docs/performance-log.md
-  // §3), each thread its share of the faces in order.
+  // §3), each thread its share of the faces in order; their bounds merged (min and max: the same
+  // for any team).
+  auto make = [&](const BoundingBox& box) {
+    set_frame(box, r.frame, r.cull_scale);
 #pragma omp parallel num_threads(team)
-  {
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-    const auto members = static_cast<std::size_t>(omp_get_num_threads());
-    const auto from = static_cast<std::uint32_t>(n * t / members);
-    const auto to = static_cast<std::uint32_t>(n * (t + 1) / members);
-    detail::LaneBounds boxes, centres;
-    if (avx2)
-      detail::face_boxes_avx2(positions, corners, from, to, frame_map, prims.get() + from, boxes,
-                              centres);
-    else
-      detail::face_boxes(positions, corners, from, to, frame_map, prims.get() + from, boxes,
-                         centres);
-    part_bounds[t].lo = F4::load(boxes.lo), part_bounds[t].hi = F4::load(boxes.hi);
-    part_centres[t].lo = F4::load(centres.lo), part_centres[t].hi = F4::load(centres.hi);
-  }
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      const auto members = static_cast<std::size_t>(omp_get_num_threads());
+      const auto from = static_cast<std::uint32_t>(n * t / members);
+      const auto to = static_cast<std::uint32_t>(n * (t + 1) / members);
+      part_boxes[t] = part_centres[t] = detail::LaneBounds{};
+      part_corners[t] = detail::CornerBounds{};
+      if (avx2)
+        detail::face_boxes_avx2(positions, corners, from, to, r.frame, r.prims.get() + from,
+                                part_boxes[t], part_centres[t], part_corners[t]);
+      else
+        detail::face_boxes(positions, corners, from, to, r.frame, r.prims.get() + from,
+                           part_boxes[t], part_centres[t], part_corners[t]);
+    }
+    Bounds boxes, centres;
+    BoundingBox corner_box;
+    for (std::size_t t = 0; t < part_boxes.size(); ++t) {
+      boxes.extend(F4::load(part_boxes[t].lo), F4::load(part_boxes[t].hi));
+      centres.extend(F4::load(part_centres[t].lo), F4::load(part_centres[t].hi));
+      for (int k = 0; k < 3; ++k) {  // (an empty share holds +inf and -inf: it changes nothing)
+        if (part_corners[t].lo[k] < corner_box.min[k]) corner_box.min[k] = part_corners[t].lo[k];
+        if (part_corners[t].hi[k] > corner_box.max[k]) corner_box.max[k] = part_corners[t].hi[k];
+      }
+    }
+    simd::store(r.boxes.lo, boxes.lo);
+    simd::store(r.boxes.hi, boxes.hi);
+    simd::store(r.centres.lo, centres.lo);
+    simd::store(r.centres.hi, centres.hi);
+    return corner_box;
+  };
+  r.corner_box = make(r.position_box);
+  if (!(r.corner_box.min == r.position_box.min && r.corner_box.max == r.position_box.max))
+    make(r.corner_box);
+  return r;
+}
+
+}  // namespace
+
+TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads)
+    : TriangleBvh(target, ties, threads, face_records(target, threads)) {}
+
+TriangleBvh::TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads,
+                         detail::FaceRecords&& records)
+    : eval_(target, ties, records.corner_box, records.position_box, /*with_spheres=*/false),
+      kernels_(&plane_kernels(simd_level())),
+      avx_gather_(simd_level() != SimdLevel::kBaseline),
+      id_(next_id()),
+      check_reach_(std::sqrt(eval_.exact_check_sq)) {
+  build(threads, records);
+}
+
+std::size_t TriangleBvh::memory_bytes() const {
+  return nodes_.size() * sizeof(Node) + leaves_.size() * sizeof(Leaf);
+}
+
+void TriangleBvh::build(int threads, detail::FaceRecords& records) {
+  const TriMesh& m = *eval_.mesh;
+  const auto n = static_cast<std::uint32_t>(m.faces.size());
+  const detail::FrameMap& frame_map = records.frame;
+  origin_ = Vec3{frame_map.origin[0], frame_map.origin[1], frame_map.origin[2]};
+  scale_ = frame_map.scale;
+  cull_scale_ = records.cull_scale;
+  const int team = threads > 0 ? threads : omp_get_max_threads();
+  // A vertex in the float frame (in double) is computed where it is read (the face records, the
+  // leaf blocks): a stored copy of the frame was 24 bytes per vertex written in a pass of its own
+  // (torus1m: 12 MB; the same trees, docs/performance-log.md §3, twenty-seventh session).
+  // Scratch arrays are allocated uninitialised and first written by the threads that use them.
+
+  // Binary SAH tree over the face boxes (float frame).
+  std::unique_ptr<Prim[]>& prims = records.prims;
+  // The bin of the face at a position while its range is split; once a leaf is made of a range,
+  // 1 at the range's first position and 0 at the others (every position is in one leaf, so after
+  // the splits it marks where the leaves start, in the order of the face records).
+  std::unique_ptr<std::uint8_t[]> bin_at(new std::uint8_t[n]);
+  const double* const positions = &m.positions[0].x;
+  const std::uint32_t* const corners = m.faces[0].data();
+#if defined(MESHDEV_X86_KERNELS)
+  const bool avx2 = simd_level() != SimdLevel::kBaseline;
+#else
+  constexpr bool avx2 = false;
+#endif
   Bounds root_bounds, root_centres;
-  for (int t = 0; t < team; ++t) {
-    root_bounds.extend(part_bounds[static_cast<std::size_t>(t)]);
-    root_centres.extend(part_centres[static_cast<std::size_t>(t)]);
-  }
+  root_bounds.extend(F4::load(records.boxes.lo), F4::load(records.boxes.hi));
+  root_centres.extend(F4::load(records.centres.lo), F4::load(records.centres.hi));
   std::vector<std::uint32_t> codes;  // with morton_splits_: each position's Morton code
   morton_splits_ = n >= kMortonFrom && out_of_spatial_order(prims.get(), n, root_centres.box());
   if (morton_splits_) sort_along_morton_curve(prims, n, root_centres.box(), team, codes);

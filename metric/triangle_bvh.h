@@ -64,6 +64,9 @@
 #include "metric/raw_storage_allocator.h"
 
 namespace meshdev {
+namespace detail {
+struct FaceRecords;
+}  // namespace detail
 
 class TriangleBvh final : public NearestPointIndex {
  public:
@@ -104,7 +107,10 @@ class TriangleBvh final : public NearestPointIndex {
   struct Search;                         // one query's search state (triangle_bvh.cpp)
   static constexpr int kCacheBits = 10;  // plane cache slots (leaf blocks) of a batch: 2^kCacheBits
 
-  void build(int threads);
+  // The index from the face records (triangle_bvh.cpp), which give the evaluator its boxes.
+  TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads,
+              detail::FaceRecords&& records);
+  void build(int threads, detail::FaceRecords& records);
   // The query in the float frame: coordinates, their float rounding, and the culling slack
   // (query + corner rounding). False if the query is too far out to be culled in float.
   bool to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const;

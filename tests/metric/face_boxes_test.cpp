@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "metric/mesh.h"
 #include "metric/plane_bounds.h"
 #include "tests/support/shapes.h"
 
@@ -21,7 +22,7 @@ bool same_bits(const void* a, const void* b, std::size_t bytes) {
 // Both versions give the same records and bounds, bit for bit, for ranges of every length modulo
 // 4 (the AVX2 version's last faces go one at a time), in frames where the coordinates reach past
 // float's range, and on vertices at +-inf and NaN (which a validated mesh never has, but the two
-// must still agree on).
+// must still agree on); the corners' bounds are equal.
 TEST(FaceBoxes, BothVersionsGiveTheSameRecordsBitForBit) {
   if (simd_level() == SimdLevel::kBaseline) GTEST_SKIP() << "this CPU runs no AVX2";
   std::mt19937_64 rng(5);
@@ -45,9 +46,16 @@ TEST(FaceBoxes, BothVersionsGiveTheSameRecordsBitForBit) {
       std::memset(static_cast<void*>(slow.data()), 0xab, slow.size() * sizeof slow[0]);
       std::memset(static_cast<void*>(fast.data()), 0xab, fast.size() * sizeof fast[0]);
       detail::LaneBounds boxes_a, centres_a, boxes_b, centres_b;
-      detail::face_boxes(positions, corners, begin, end, frame, slow.data(), boxes_a, centres_a);
+      detail::CornerBounds corners_a, corners_b;
+      detail::face_boxes(positions, corners, begin, end, frame, slow.data(), boxes_a, centres_a,
+                         corners_a);
       detail::face_boxes_avx2(positions, corners, begin, end, frame, fast.data(), boxes_b,
-                              centres_b);
+                              centres_b, corners_b);
+      // The corners' own bounds are equal (the lanes may meet -0 and +0 in another order).
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_EQ(corners_a.lo[k], corners_b.lo[k]) << "faces " << begin << " .. " << end;
+        ASSERT_EQ(corners_a.hi[k], corners_b.hi[k]) << "faces " << begin << " .. " << end;
+      }
       ASSERT_TRUE(same_bits(slow.data(), fast.data(), slow.size() * sizeof slow[0]))
           << "faces " << begin << " .. " << end;
       ASSERT_TRUE(same_bits(&boxes_a, &boxes_b, sizeof boxes_a))
@@ -60,7 +68,8 @@ TEST(FaceBoxes, BothVersionsGiveTheSameRecordsBitForBit) {
 // The baseline against its definition: each record is the tightest float box around the face's
 // frame coordinates (lo the largest float not above the least, hi the least float not below the
 // largest), with the face index in lane 3 of lo and 0 in lane 3 of hi; the bounds are the boxes'
-// and the centres' (lo + hi) minima and maxima; nothing is written past the range.
+// and the centres' (lo + hi) minima and maxima; the corner bounds, extended from what they held,
+// are the box of the faces' corners; nothing is written past the range.
 TEST(FaceBoxes, BaselineMatchesItsDefinition) {
   const TriMesh soup = test::kernel_soup(500, 3);
   const detail::FrameMap frame{{2.0, -1.0, 0.5}, 1.0 / 60.0};
@@ -68,8 +77,19 @@ TEST(FaceBoxes, BaselineMatchesItsDefinition) {
   std::vector<detail::FaceBox> out(end - begin + 1);
   std::memset(static_cast<void*>(out.data()), 0xab, out.size() * sizeof out[0]);
   detail::LaneBounds boxes, centres;
+  detail::CornerBounds corner_bounds;
+  corner_bounds.hi[1] = 1e9;  // held before: kept
   detail::face_boxes(&soup.positions[0].x, soup.faces[0].data(), begin, end, frame, out.data(),
-                     boxes, centres);
+                     boxes, centres, corner_bounds);
+  BoundingBox corner_box;
+  for (std::uint32_t f = begin; f < end; ++f)
+    for (std::uint32_t v : soup.faces[f]) corner_box.extend(soup.positions[v]);
+  ASSERT_LT(corner_box.max[1], 1e9);
+  corner_box.max[1] = 1e9;
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(corner_bounds.lo[k], corner_box.min[k]) << k;
+    EXPECT_EQ(corner_bounds.hi[k], corner_box.max[k]) << k;
+  }
   float box_lo[3], box_hi[3], centre_lo[3], centre_hi[3];
   for (int k = 0; k < 3; ++k) {
     box_lo[k] = centre_lo[k] = std::numeric_limits<float>::infinity();

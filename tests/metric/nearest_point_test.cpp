@@ -810,6 +810,35 @@ TEST(NearestPoint, BvhBatchBoundsNeighboursByTheCentresGeometricDistance) {
   EXPECT_GT(batch_packets_checked(m, points, hints.data()), 0u);
 }
 
+// The BVH takes its frame and its tie tolerance from the box of the vertices its faces use, as
+// the oracle does, not from the box of all vertices (which its build reads first): with a
+// vertex no face uses 1e6 away, an absolute tie tolerance of 1e-3 of the diagonal keeps the
+// triangle 1 farther out of the tie set, on 1, 2 and 4 build threads (more threads than faces:
+// shares without faces).
+TEST(NearestPoint, BvhTakesItsBoxFromTheReferencedVertices) {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1e6, 1e6, 1e6}};
+  m.faces = {{0, 1, 2}, {3, 4, 5}};
+  TieOptions ties;
+  ties.absolute_fraction = 1e-3;
+  const NearestPointBrute brute(m, ties);
+  const Vec3 p{0.2, 0.2, -0.5};
+  std::vector<SurfaceHit> tf;
+  ASSERT_EQ(brute.find(p, {}, tf), 0.5);
+  ASSERT_EQ(tf.size(), 1u);
+  for (int threads : {1, 2, 4}) {
+    const TriangleBvh bvh(m, ties, threads);
+    EXPECT_EQ(bvh.check_structure(), "");
+    std::vector<SurfaceHit> tb;
+    EXPECT_EQ(bvh.find(p, {}, tb), 0.5) << threads;
+    expect_same(tb, tf);
+    BatchHits batch;
+    ASSERT_EQ(bvh.find_batch(&p, nullptr, 1, batch), 1u);
+    EXPECT_EQ(batch.distance[0], 0.5) << threads;
+    expect_same({batch.ties_begin(0), batch.ties_begin(0) + batch.tie_count(0)}, tf);
+  }
+}
+
 // Found by fuzz_nearest_point: in a mesh 1e-300 wide every squared distance underflows to 0, so
 // in the oracle's arithmetic all faces tie, though the scaled float frame sees them far apart.
 // Such meshes (and ones over 1e140) are searched without culling.
