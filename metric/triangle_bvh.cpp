@@ -868,15 +868,38 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   // arithmetic, docs/performance-log.md §3).
   const auto leaf_count = static_cast<std::int64_t>(blocks);
   leaves_.resize(blocks);  // raw storage: each block is written in full below
-  // Sum of the faces' longest edges, per block; raw storage, each written below by its thread
-  // (value-initialised, the calling thread zeroed 2 MB for torus1m while the team waited).
-  std::vector<double, RawStorageAllocator<double>> leaf_size(blocks);
-  double corner_error2 = 0.0;  // square roots are taken once, of the maxima
   constexpr std::int64_t kBlocksPerTask = 1024;
+  // Sum of the faces' longest edges per task of kBlocksPerTask blocks (each summed in leaf order
+  // by the thread that fills it), so the packet extent does not depend on the thread count.
+  std::vector<double> task_size(
+      static_cast<std::size_t>((leaf_count + kBlocksPerTask - 1) / kBlocksPerTask));
+  double corner_error2 = 0.0;  // square roots are taken once, of the maxima
+  // While one thread collapses, the others touch the leaf blocks' pages in order, one byte per
+  // page (raw storage: the blocks' fill writes every byte later), so a build on pages the process
+  // does not hold yet takes their faults on threads that would wait. The process's first torus1m
+  // build in peer_compare (2 threads, alternating processes; the same 16,010 faults): means
+  // 0.1156 -> 0.1025 s and 0.1013 -> 0.0932 s in two series of 12, where faults were slow; 0.0870
+  // -> 0.0860 s in 16 where they were not (docs/performance-log.md §3).
+  std::atomic<bool> collapsed{false};
+  std::atomic<std::size_t> next_page{0};
+  constexpr std::size_t kPage = 4096, kPagesPerStep = 16;
 #pragma omp parallel num_threads(team)
   {
-#pragma omp single
-    root_ = collapse(collapse, 0, 1);
+#pragma omp single nowait
+    {
+      root_ = collapse(collapse, 0, 1);
+      collapsed.store(true, std::memory_order_release);
+    }
+    char* const bytes = reinterpret_cast<char*>(leaves_.data());
+    const std::size_t pages = (blocks * sizeof(Leaf) + kPage - 1) / kPage;
+    while (!collapsed.load(std::memory_order_acquire)) {
+      const std::size_t first_page = next_page.fetch_add(kPagesPerStep);
+      if (first_page >= pages) break;
+      for (std::size_t p = first_page; p < std::min(first_page + kPagesPerStep, pages); ++p)
+        bytes[p * kPage] = 0;
+    }
+#pragma omp barrier
+    double task_sum = 0.0;  // this thread's task so far
 #pragma omp for schedule(dynamic, kBlocksPerTask) reduction(max : corner_error2)
     for (std::int64_t l = 0; l < leaf_count; ++l) {
       // The faces' corners are read through two indirections, in no order the cache foresees
@@ -900,13 +923,14 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
                                              leaves_[l])
               : detail::fill_leaf_block(positions, corners, face_ids, count, frame_map, leaves_[l]);
       corner_error2 = std::max(corner_error2, sums.corner_error2);
-      leaf_size[l] = sums.edge_sum;
+      task_sum = (l % kBlocksPerTask == 0 ? 0.0 : task_sum) + sums.edge_sum;
+      if ((l + 1) % kBlocksPerTask == 0 || l + 1 == leaf_count)
+        task_size[static_cast<std::size_t>(l / kBlocksPerTask)] = task_sum;
     }
   }
   assert(next_block == blocks);
   corner_error_ = std::sqrt(corner_error2);
-  // Summed in leaf order, so the packet extent does not depend on the thread count.
-  const double mean_edge = std::accumulate(leaf_size.begin(), leaf_size.end(), 0.0) / n;
+  const double mean_edge = std::accumulate(task_size.begin(), task_size.end(), 0.0) / n;
   packet_extent_ = kPacketExtent * mean_edge;
   full_packet_extent_ = kFullPacketExtent * mean_edge;
   assert(depth_ <= kMaxBinaryDepth);
