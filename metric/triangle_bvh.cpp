@@ -366,6 +366,24 @@ struct FaceRecords {
 
 namespace {
 
+// A mesh as the raw arrays the face records and leaf blocks read (3 doubles per vertex, 3 vertex
+// indices per face), and whether the CPU runs their AVX2 versions. Precondition: m has faces.
+struct RawMesh {
+  const double* positions;
+  const std::uint32_t* corners;
+  bool avx2;
+};
+RawMesh raw_mesh(const TriMesh& m) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Triangle) == 3 * sizeof(std::uint32_t),
+                "the face records and leaf blocks read positions and faces as raw arrays");
+#if defined(MESHDEV_X86_KERNELS)
+  const bool avx2 = simd_level() != SimdLevel::kBaseline;
+#else
+  const bool avx2 = false;
+#endif
+  return {&m.positions[0].x, m.faces[0].data(), avx2};
+}
+
 // The float frame of a box: centred on it, the largest half extent scaled to 1. Squared
 // distances in double underflow (or overflow) for meshes this small (or large), so faces far
 // apart in the frame can tie at a squared distance of 0 (or infinity) in the oracle's
@@ -392,15 +410,10 @@ detail::FaceRecords face_records(const TriMesh& m, int threads) {
   const auto n = static_cast<std::uint32_t>(m.faces.size());
   assert(n > 0);
   const int team = threads > 0 ? threads : omp_get_max_threads();
-  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Triangle) == 3 * sizeof(std::uint32_t),
-                "the face records and leaf blocks read positions and faces as raw arrays");
-  const double* const positions = &m.positions[0].x;
-  const std::uint32_t* const corners = m.faces[0].data();
-#if defined(MESHDEV_X86_KERNELS)
-  const bool avx2 = simd_level() != SimdLevel::kBaseline;
-#else
-  constexpr bool avx2 = false;
-#endif
+  const RawMesh raw = raw_mesh(m);
+  const double* const positions = raw.positions;
+  const std::uint32_t* const corners = raw.corners;
+  const bool avx2 = raw.avx2;
   detail::FaceRecords r;
   r.position_box = position_bounding_box(m, team);
   // Allocated uninitialised and first written by the threads that use it.
@@ -490,13 +503,10 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   // 1 at the range's first position and 0 at the others (every position is in one leaf, so after
   // the splits it marks where the leaves start, in the order of the face records).
   std::unique_ptr<std::uint8_t[]> bin_at(new std::uint8_t[n]);
-  const double* const positions = &m.positions[0].x;
-  const std::uint32_t* const corners = m.faces[0].data();
-#if defined(MESHDEV_X86_KERNELS)
-  const bool avx2 = simd_level() != SimdLevel::kBaseline;
-#else
-  constexpr bool avx2 = false;
-#endif
+  const RawMesh raw = raw_mesh(m);
+  const double* const positions = raw.positions;
+  const std::uint32_t* const corners = raw.corners;
+  const bool avx2 = raw.avx2;
   Bounds root_bounds, root_centres;
   root_bounds.extend(F4::load(records.boxes.lo), F4::load(records.boxes.hi));
   root_centres.extend(F4::load(records.centres.lo), F4::load(records.centres.hi));
@@ -864,8 +874,8 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
 
   // Leaf blocks: float corners (round to nearest), the measured rounding, the cull margins; in
   // AVX2 lanes where the CPU has them (metric/leaf_blocks.h: torus1m's build 1.022 / 1.060 on 1 /
-  // 2 threads, torus1m_shuffled 1.044 / 1.030; the blocks' corners are cache misses more than
-  // arithmetic, docs/performance-log.md §3).
+  // 2 threads, torus1m_shuffled 1.044 / 1.030, and 1.087 / 1.091 more once each corner came by
+  // one load instead of a gather per axis, docs/performance-log.md §3).
   const auto leaf_count = static_cast<std::int64_t>(blocks);
   leaves_.resize(blocks);  // raw storage: each block is written in full below
   constexpr std::int64_t kBlocksPerTask = 1024;
