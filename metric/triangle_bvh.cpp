@@ -824,11 +824,11 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
 
   // Collapse into 4-wide nodes (recursive: the binary depth is bounded) by the plans the splits
   // made (metric/wide_collapse.h: the least summed half area of the wide nodes), on one thread
-  // while the others wait, then the leaf blocks on the whole team. Beside the leaf blocks the
-  // collapse took twice as long (torus1m, 2 threads: 11.5 ms instead of 5, the two phases 14.5
-  // ms instead of 11.7; both fight for the memory since the blocks read their corners with
-  // loads instead of gathers): builds 1.061 faster on torus1m, 1.27 on buildings.ply (medians of
-  // 30 alternating builds in one process, docs/performance-log.md §3). The greedy collapse it
+  // (the others touch the leaf blocks' pages meanwhile, below), then the leaf blocks on the whole
+  // team. Beside the leaf blocks, which read their corners by loads since the forty-fifth
+  // session, the collapse took 11.5 ms instead of 5.0 (torus1m, 2 threads; the two phases 14.5
+  // ms against 11.7): builds 1.061 faster on torus1m, 1.27 on buildings.ply (medians of 30
+  // alternating builds in one process, docs/performance-log.md §3). The greedy collapse it
   // replaced (the inner child of largest area opened until a node had 4 children) left nodes of
   // 2 leaves under most nodes of small subtrees: torus1m 126,627 nodes, now 107,485 (60.5 -> 58.4
   // bytes per face), its queries from torus100k 1.0045-1.0062 / 1.0060-1.0151 faster on 1 / 2
