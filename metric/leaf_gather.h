@@ -1,9 +1,10 @@
 #pragma once
 // The packets' tree walk (TriangleBvh::gather_blocks): the leaf blocks of a 4-wide BVH whose
-// boxes lie within reach of a box, with their boxes, breadth first. Two versions with the same
-// output, element for element: the baseline (SSE2 or plain code, metric/leaf_gather.cpp) and an
-// AVX version (metric/leaf_gather_avx2.cpp, its own translation unit compiled with -mavx2,
-// entered only where simd_level() is not kBaseline).
+// boxes lie within reach of a box, with their boxes, breadth first; and each query's choice among
+// them (blocks_near_point). Two versions of each with the same output, element for element: the
+// baseline (SSE2 or plain code, metric/leaf_gather.cpp) and an AVX version
+// (metric/leaf_gather_avx2.cpp, its own translation unit compiled with -mavx2, entered only where
+// simd_level() is not kBaseline).
 #include <cstddef>
 #include <cstdint>
 
@@ -56,5 +57,20 @@ std::size_t gather_leaf_blocks_avx2(const WideNode* nodes, std::uint32_t root, c
                                     const float hi[3], float limit2, std::size_t max_blocks,
                                     std::uint32_t* queue, std::size_t queue_size,
                                     GatheredBlocks out);
+
+// A query's share of a packet's gathered blocks: the indices i < count of the blocks whose boxes
+// lo[axis][i], hi[axis][i] lie within squared distance `limit2` of point q (box_gap2's arithmetic
+// with the box [q, q], as the walk above; kept unless gap2 > limit2, so NaN gaps are kept),
+// written as bytes to `which` in increasing order. Returns how many. Each row is 16-byte aligned
+// with count rounded up to a multiple of 8 readable entries (those past count are read and never
+// kept); `which` needs room for count + 8 (entries are written 4 or 8 at a time past the last
+// kept). Preconditions: count <= 256. O(count).
+std::size_t blocks_near_point(const float* const lo[3], const float* const hi[3], std::size_t count,
+                              const float q[3], float limit2, std::uint8_t* which);
+// The same, eight blocks per step in AVX lanes where the baseline takes four. Precondition: the
+// CPU runs AVX2 (simd_level() != kBaseline); only in builds with MESHDEV_X86_KERNELS.
+std::size_t blocks_near_point_avx2(const float* const lo[3], const float* const hi[3],
+                                   std::size_t count, const float q[3], float limit2,
+                                   std::uint8_t* which);
 
 }  // namespace meshdev::detail

@@ -6,6 +6,8 @@
 #include <immintrin.h>
 
 #include <cassert>
+#include <cstdint>
+#include <cstring>
 
 #include "metric/leaf_gather.h"
 
@@ -75,6 +77,59 @@ std::size_t gather_leaf_blocks_avx2(const WideNode* nodes, std::uint32_t root, c
     if (count > max_blocks || tail > queue_size) return max_blocks + 1;
   }
   return count;
+}
+
+namespace {
+
+// For a mask of eight lanes: the kept lanes' numbers packed as bytes, lowest first.
+struct PackedLanes8 {
+  std::uint64_t lanes[256];
+  constexpr PackedLanes8() : lanes() {
+    for (unsigned mask = 0; mask < 256; ++mask) {
+      int n = 0;
+      for (unsigned lane = 0; lane < 8; ++lane)
+        if ((mask >> lane & 1u) != 0) lanes[mask] |= std::uint64_t{lane} << (8 * n++);
+    }
+  }
+};
+constexpr PackedLanes8 kPackedLanes8;
+
+}  // namespace
+
+// blocks_near_point's gaps in eight lanes: the same operations in the same order (SSE's max, no
+// fused multiply-add; the sum of squares starts from its first term, as 0 + x = x for the squares,
+// which are >= 0 or NaN), so the same blocks are kept. Against four lanes, with the packet's
+// frame in SSE2 lanes (metric/query_frame.h), `peer_compare A B 1000000 --ab 8`, 1 / 2 threads:
+// torus100k -> 1m 1.050 / 1.033, torus100k -> 10k 1.045 / 1.039, torus1m -> 100k 1.039 / 1.029,
+// buildings_s40k -> buildings 1.040 / 1.043, armadillo 1.033 / 1.034; this part alone 1.028 /
+// 1.035 on torus100k -> 1m (docs/performance-log.md §3, forty-sixth session).
+std::size_t blocks_near_point_avx2(const float* const lo[3], const float* const hi[3],
+                                   std::size_t count, const float q[3], float limit2,
+                                   std::uint8_t* which) {
+  assert(count <= 256);
+  const __m256 p[3] = {_mm256_set1_ps(q[0]), _mm256_set1_ps(q[1]), _mm256_set1_ps(q[2])};
+  const __m256 limit = _mm256_set1_ps(limit2);
+  const __m256 zero = _mm256_setzero_ps();
+  const float* const l[3] = {lo[0], lo[1], lo[2]};  // not reloaded after the stores to `which`
+  const float* const h[3] = {hi[0], hi[1], hi[2]};
+  std::size_t selected = 0;
+  for (std::size_t b = 0; b < count; b += 8) {
+    __m256 gap2 = zero;
+    for (int a = 0; a < 3; ++a) {
+      const __m256 gap =
+          _mm256_max_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_loadu_ps(l[a] + b), p[a]),
+                                      _mm256_sub_ps(p[a], _mm256_loadu_ps(h[a] + b))),
+                        zero);
+      gap2 = a == 0 ? _mm256_mul_ps(gap, gap) : _mm256_add_ps(gap2, _mm256_mul_ps(gap, gap));
+    }
+    unsigned keep =
+        static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(gap2, limit, _CMP_NGT_UQ)));
+    if (count - b < 8) keep &= (1u << (count - b)) - 1u;  // past the count: never
+    const std::uint64_t kept = kPackedLanes8.lanes[keep] + b * 0x0101010101010101ull;
+    std::memcpy(which + selected, &kept, sizeof kept);
+    selected += static_cast<std::size_t>(__builtin_popcount(keep));
+  }
+  return selected;
 }
 
 }  // namespace meshdev::detail

@@ -33,14 +33,6 @@ inline int greater_mask(F4 a, F4 b) { return _mm_movemask_ps(_mm_cmpgt_ps(a.v, b
 // Bit k set when lane k of a equals lane k of b.
 inline int equal_mask(F4 a, F4 b) { return _mm_movemask_ps(_mm_cmpeq_ps(a.v, b.v)); }
 inline void store(float* p, F4 a) { _mm_storeu_ps(p, a.v); }
-// One float: a > b ? a : b and a < b ? a : b (b when either is NaN), as max and min above, in one
-// instruction where a compiled comparison may branch on the data.
-inline float max1(float a, float b) {
-  return _mm_cvtss_f32(_mm_max_ss(_mm_set_ss(a), _mm_set_ss(b)));
-}
-inline float min1(float a, float b) {
-  return _mm_cvtss_f32(_mm_min_ss(_mm_set_ss(a), _mm_set_ss(b)));
-}
 
 #else
 
@@ -68,8 +60,6 @@ inline F4 min(F4 a, F4 b) {
   for (int k = 0; k < 4; ++k) r.v[k] = a.v[k] < b.v[k] ? a.v[k] : b.v[k];
   return r;
 }
-inline float max1(float a, float b) { return a > b ? a : b; }
-inline float min1(float a, float b) { return a < b ? a : b; }
 inline F4 abs(F4 a) {
   F4 r;
   for (int k = 0; k < 4; ++k) r.v[k] = std::fabs(a.v[k]);

@@ -20,6 +20,7 @@
 #include "metric/leaf_blocks.h"
 #include "metric/morton_order.h"
 #include "metric/plane_bounds.h"
+#include "metric/query_frame.h"
 #include "metric/simd4.h"
 #include "metric/wide_collapse.h"
 
@@ -58,7 +59,6 @@ constexpr double kUnit = detail::kFloatUnit;  // unit roundoff of float (round t
 // 3e-16). The packets' planes (metric/plane_bounds.h) share both limits.
 constexpr double kMaxKappa = kMaxCullKappa;
 constexpr double kMinNormal2 = kMinCullNormal2;
-constexpr double kMaxQuery = 1e12;  // queries farther out (float frame) are never culled
 // Meshes whose largest half extent is outside [kMinExtent, kMaxExtent] (absolute units) are never
 // culled: their squared distances leave double's normal range (found by fuzz_nearest_point:
 // faces 1e-300 apart all tie at a squared distance of 0 underflowed).
@@ -96,12 +96,6 @@ constexpr std::size_t kMinBlockPacket = 2;
 // within 1 %); 256 was no faster than 128 (docs/performance-log.md §3, twenty-fifth session).
 constexpr std::size_t kMaxBlocks = 128;
 constexpr std::size_t kDenseQueries = 3;
-// For a mask of the four lanes of a group of blocks: the kept lanes' numbers packed as bytes,
-// lowest first, and how many they are.
-constexpr std::uint32_t kPackedLanes[16] = {
-    0x00000000, 0x00000000, 0x00000001, 0x00000100, 0x00000002, 0x00000200, 0x00000201, 0x00020100,
-    0x00000003, 0x00000300, 0x00000301, 0x00030100, 0x00000302, 0x00030200, 0x00030201, 0x03020100};
-constexpr std::uint32_t kLaneCount[16] = {0, 1, 1, 2, 1, 2, 2, 3, 1, 2, 2, 3, 2, 3, 3, 4};
 // A packet's guess of its queries' distances: this factor times the largest distance of the
 // answers before it (used where it is less than half the packet's diagonal); the next packet
 // answers its centre in full instead where more than one query in kGuessMisses was farther than
@@ -488,8 +482,7 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   const TriMesh& m = *eval_.mesh;
   const auto n = static_cast<std::uint32_t>(m.faces.size());
   const detail::FrameMap& frame_map = records.frame;
-  origin_ = Vec3{frame_map.origin[0], frame_map.origin[1], frame_map.origin[2]};
-  scale_ = frame_map.scale;
+  frame_ = frame_map;
   cull_scale_ = records.cull_scale;
   const int team = threads > 0 ? threads : omp_get_max_threads();
   // A vertex in the float frame (in double) is computed where it is read (the face records, the
@@ -1011,19 +1004,9 @@ std::string TriangleBvh::check_structure() const {
   return error;
 }
 
-bool TriangleBvh::to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const {
-  for (int k = 0; k < 3; ++k) {
-    q[k] = (p[k] - origin_[k]) * scale_;
-    qf[k] = static_cast<float>(q[k]);
-  }
-  const bool cull = cull_scale_ && std::fabs(q[0]) < kMaxQuery && std::fabs(q[1]) < kMaxQuery &&
-                    std::fabs(q[2]) < kMaxQuery;  // false for NaN
-  slack = corner_error_;
-  if (cull) {
-    const double ex = qf[0] - q[0], ey = qf[1] - q[1], ez = qf[2] - q[2];
-    slack += std::fabs(ex) + std::fabs(ey) + std::fabs(ez) +  // >= the rounding's length
-             4e-16 * (std::fabs(q[0]) + std::fabs(q[1]) + std::fabs(q[2]) + 3.0);
-  }
+bool TriangleBvh::to_frame(const Vec3& p, float qf[3], double& slack) const {
+  const bool cull = detail::frame_query(p, frame_, corner_error_, qf, slack) && cull_scale_;
+  if (!cull) slack = corner_error_;
   return cull;
 }
 
@@ -1140,9 +1123,8 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
   Search s(p, hint, ties);
   s.floor_dist = floor_of(hint);
   // The query in the float frame, and how far rounding may have moved it (plus the corners').
-  double q[3];
   float qf[3];
-  s.cull = to_frame(p, q, qf, s.slack);
+  s.cull = to_frame(p, qf, s.slack);
   for (int k = 0; k < 3; ++k) s.pf[k] = F4::splat(qf[k]);
 
   if (hint.start_face != kNoFace && hint.start_face < eval_.mesh->faces.size()) {
@@ -1194,7 +1176,6 @@ double TriangleBvh::find(const Vec3& p, const QueryHint& hint,
 // Batches of coherent queries (packets).
 
 struct TriangleBvh::PacketScratch {
-  double q[kPacketSize][3];
   float qf[kPacketSize][3];
   double slack[kPacketSize];
   // Packets of faces: the supporting planes of the gathered blocks' faces in the float frame
@@ -1217,11 +1198,11 @@ struct TriangleBvh::PacketScratch {
   std::uint64_t cache_owner = 0;    // the TriangleBvh::id_ whose planes the cache holds
   float lo[3], hi[3];               // the packet's box (float frame), set while it grows
   // Block packets: the leaf blocks within the packet's reach and their boxes (float frame),
-  // rows padded to a multiple of 4 lanes.
+  // rows padded to a multiple of 8 lanes (pad_blocks).
   std::size_t block_count = 0;
   std::uint32_t block[kMaxBlocks + 4];  // + 4: gather_blocks writes a node's four children
-  alignas(16) float block_lo[3][kMaxBlocks + 4];
-  alignas(16) float block_hi[3][kMaxBlocks + 4];
+  alignas(16) float block_lo[3][kMaxBlocks + 8];
+  alignas(16) float block_hi[3][kMaxBlocks + 8];
   std::size_t misses = 0;          // queries of the last packet farther from B than its guess
   bool sparse = false;             // the last packet of faces was sparse (find_packet)
   SurfaceHit firsts[kPacketSize];  // find_packet: each query's exact test of its first face
@@ -1281,36 +1262,19 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
   // Packets of faces name them by leaf slot, block << 2 | lane, in 32 bits (short of a billion
   // faces).
   const bool slots_fit = leaves_.size() <= (kNoFace >> 2);
-  const double max_diag2 = packet_extent_ * packet_extent_;
-  const double full_diag2 = full_packet_extent_ * full_packet_extent_;
+  const detail::PacketExtent extent{packet_extent_ * packet_extent_,
+                                    full_packet_extent_ * full_packet_extent_, kFullPacket};
   std::size_t i = 0;
   while (i < count && out.hits.size() < BatchHits::kMaxHits) {
     // Grow a packet of consecutive queries while its box stays within kPacketExtent mean edges
     // (kFullPacketExtent once it holds kFullPacket queries). At least kMinPacket make a packet of
     // faces; fewer, where queries are sparse on B, a block packet.
-    std::size_t j = i;
-    float* lo = scratch.lo;
-    float* hi = scratch.hi;
-    for (; j < count && j - i < kPacketSize; ++j) {
-      const std::size_t k = j - i;
-      if (!to_frame(points[j], scratch.q[k], scratch.qf[k], scratch.slack[k])) break;
-      float nlo[3], nhi[3];
-      double diag2 = 0.0;
-      // The box grows without a branch on the data: GCC 12 compiled std::max here to a compare
-      // and a branch (std::min beside it to minss), and whether a query extends the box varies
-      // from query to query (callgrind's branch model: 0.69 mispredictions per sample on
-      // torus100k -> 1m). Chunk-interleaved, 1 and 2 threads: +1.2-2.8 % on the torus pairs,
-      // armadillo +2.4 %, buildings +1.8-3.6 % (docs/performance-log.md §3).
-      for (int a = 0; a < 3; ++a) {
-        const float q = scratch.qf[k][a];
-        nlo[a] = k == 0 ? q : simd::min1(q, lo[a]);  // = std::min(lo[a], q), bit for bit
-        nhi[a] = k == 0 ? q : simd::max1(q, hi[a]);
-        diag2 += (static_cast<double>(nhi[a]) - nlo[a]) * (static_cast<double>(nhi[a]) - nlo[a]);
-      }
-      if (diag2 > max_diag2 || (k >= kFullPacket && diag2 > full_diag2)) break;
-      std::copy(nlo, nlo + 3, lo);
-      std::copy(nhi, nhi + 3, hi);
-    }
+    // (detail::frame_packet: the queries' float frame and the box, without a branch on the data.)
+    const std::size_t j =
+        i + (cull_scale_ ? detail::frame_packet(points + i, std::min(count - i, kPacketSize),
+                                                frame_, corner_error_, extent, scratch.qf,
+                                                scratch.slack, scratch.lo, scratch.hi)
+                         : 0);
     if (j == i) {  // beyond the float range: on its own
       single(i++);
       continue;
@@ -1321,8 +1285,9 @@ std::size_t TriangleBvh::find_batch(const Vec3* points, const QueryHint* hints, 
     double guess = recent >= 0.0 && guess_ok ? eval_.limit(kGuessFactor * recent) : -1.0;
     double diag2 = 0.0;
     for (int a = 0; a < 3; ++a)
-      diag2 += (static_cast<double>(hi[a]) - lo[a]) * (static_cast<double>(hi[a]) - lo[a]);
-    if (guess * scale_ > 0.5 * std::sqrt(diag2)) guess = -1.0;
+      diag2 += (static_cast<double>(scratch.hi[a]) - scratch.lo[a]) *
+               (static_cast<double>(scratch.hi[a]) - scratch.lo[a]);
+    if (guess * frame_.scale > 0.5 * std::sqrt(diag2)) guess = -1.0;
     std::size_t answered = 0;
     if (j - i >= kMinPacket && slots_fit) {
       answered = find_packet(points, hints, i, j - i, previous, guess, scratch, out);
@@ -1398,13 +1363,13 @@ bool TriangleBvh::gather_blocks(const float lo[3], const float hi[3], double rea
 }
 
 std::size_t TriangleBvh::pad_blocks(PacketScratch& scratch) {
-  const std::size_t padded = (scratch.block_count + 3) / 4 * 4;
+  const std::size_t padded8 = (scratch.block_count + 7) / 8 * 8;
   for (int k = 0; k < 3; ++k)  // padding lanes: never within reach
-    for (std::size_t b = scratch.block_count; b < padded; ++b) {
+    for (std::size_t b = scratch.block_count; b < padded8; ++b) {
       scratch.block_lo[k][b] = kInf;
       scratch.block_hi[k][b] = kInf;
     }
-  return padded;
+  return (scratch.block_count + 3) / 4 * 4;
 }
 
 double TriangleBvh::packet_bounds(const Vec3* points, const QueryHint* hints, std::size_t base,
@@ -1565,10 +1530,10 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     }
     for (std::size_t b = blocks; b < padded; ++b) scratch.block_rows[b] = nullptr;
   }
-  // Sparse packets: the blocks a query bounds, as indices into the packet's blocks (+ 4: the
-  // selection writes four entries per group of blocks, up to three past the last it keeps).
+  // Sparse packets: the blocks a query bounds, as indices into the packet's blocks (+ 8: the
+  // selection writes four or eight entries per group of blocks, past the last it keeps).
   static_assert(kMaxBlocks <= 256, "block indices of a packet fit in a byte");
-  std::uint8_t which[kMaxBlocks + 4];
+  std::uint8_t which[kMaxBlocks + 8];
   auto face_at = [&](std::size_t idx) {
     return dense ? leaves_[scratch.slots[idx] >> 2].face[scratch.slots[idx] & 3]
                  : leaves_[scratch.block[which[idx >> 2]]].face[idx & 3];
@@ -1605,31 +1570,14 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // (chunk-interleaved, 1 and 2 threads: torus100k -> 1m +6-10 %, torus1m -> 100k +17 %,
   // torus100k -> 10k +10-16 %, armadillo +11 %, buildings +3-8 %; docs/performance-log.md §3).
   auto select_blocks = [&](std::size_t k) -> std::size_t {
-    const float* qf = scratch.qf[k];
-    const F4 pf[3] = {F4::splat(qf[0]), F4::splat(qf[1]), F4::splat(qf[2])};
-    const F4 box_cut =
-        F4::splat(round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5)));
-    std::size_t selected = 0;
-    for (std::size_t b = 0; b < padded; b += 4) {
-      F4 blo[3], bhi[3];
-      for (int a = 0; a < 3; ++a) {
-        blo[a] = F4::load(scratch.block_lo[a] + b);
-        bhi[a] = F4::load(scratch.block_hi[a] + b);
-      }
-      unsigned keep =
-          static_cast<unsigned>(~greater_mask(box_sq_distances_f4(blo, bhi, pf), box_cut)) & 0xfu;
-      if (blocks - b < 4) keep &= (1u << (blocks - b)) - 1u;  // padding lanes: never
-      // Without a branch per block: the kept lanes vary from query to query, and a loop over
-      // them branched on each (cachegrind's branch model: 1.9 M mispredictions for 1 M queries of
-      // torus100k -> 1m; +4.0-4.7 % when it went). Their indices are packed by a table and
-      // written in one store, four bytes (instructions per sample on torus100k -> 1m 2,019 ->
-      // 1,943 against a store per lane of the index and of its planes' address;
-      // docs/performance-log.md §3).
-      const std::uint32_t kept = kPackedLanes[keep] + static_cast<std::uint32_t>(b) * 0x01010101u;
-      std::memcpy(which + selected, &kept, sizeof kept);
-      selected += kLaneCount[keep];
-    }
-    return selected;
+    const float limit2 = round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5));
+    const float* lo[3] = {scratch.block_lo[0], scratch.block_lo[1], scratch.block_lo[2]};
+    const float* hi[3] = {scratch.block_hi[0], scratch.block_hi[1], scratch.block_hi[2]};
+#if defined(MESHDEV_X86_KERNELS)
+    if (avx_gather_)
+      return detail::blocks_near_point_avx2(lo, hi, blocks, scratch.qf[k], limit2, which);
+#endif
+    return detail::blocks_near_point(lo, hi, blocks, scratch.qf[k], limit2, which);
   };
   // Query k's bounds into scratch.bound (count: the selected blocks' lanes), the smallest and the
   // runner-up (NaN bounds become 0: evaluated first, never culled).

@@ -111,9 +111,10 @@ class TriangleBvh final : public NearestPointIndex {
   TriangleBvh(const TriMesh& target, const TieOptions& ties, int threads,
               detail::FaceRecords&& records);
   void build(int threads, detail::FaceRecords& records);
-  // The query in the float frame: coordinates, their float rounding, and the culling slack
-  // (query + corner rounding). False if the query is too far out to be culled in float.
-  bool to_frame(const Vec3& p, double q[3], float qf[3], double& slack) const;
+  // The query in the float frame (detail::frame_query): its coordinates rounded to float, and
+  // the culling slack (query + corner rounding). False if the query cannot be culled in float
+  // (too far out, or a mesh searched without culling); slack is then corner_error_.
+  bool to_frame(const Vec3& p, float qf[3], double& slack) const;
   // Answers queries [base, base + n) of a batch as one packet (their frame coordinates and box
   // are in `scratch`) and returns how many it answered: n, or fewer once BatchHits::kMaxHits ties
   // are held; 0, with nothing written, if the packet's reach holds too many faces. `guess` >= 0:
@@ -135,7 +136,7 @@ class TriangleBvh final : public NearestPointIndex {
   // A tie limit (absolute, not squared) as a culling radius in the float frame: at least
   // `floor`, plus the query's rounding slack (to_frame).
   double frame_reach(double limit, double floor, double slack) const {
-    return std::max(limit, floor) * scale_ + slack;
+    return std::max(limit, floor) * frame_.scale + slack;
   }
   // Answers the centre query of the packet [base, base + n) in full (scratch.center_distance,
   // scratch.center_ties) and bounds every query by it (triangle inequality): limit[k], the tie
@@ -175,21 +176,21 @@ class TriangleBvh final : public NearestPointIndex {
   // The leaf blocks within `reach` of [lo, hi] into scratch; false if more than kMaxBlocks.
   bool gather_blocks(const float lo[3], const float hi[3], double reach,
                      PacketScratch& scratch) const;
-  // Pads the gathered blocks' boxes to a multiple of 4 lanes with boxes never within reach;
-  // returns that multiple.
+  // Pads the gathered blocks' boxes to a multiple of 8 lanes with boxes never within reach
+  // (detail::blocks_near_point reads 8 at a time); returns the count rounded up to 4, the
+  // multiple the packets' other per-block rows are padded to.
   static std::size_t pad_blocks(PacketScratch& scratch);
 
   detail::FaceEvaluator eval_;
   const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)
   // gather_blocks walks with AVX lane permutations (the CPU runs AVX2, metric/leaf_gather.h).
   bool avx_gather_;
-  std::uint64_t id_;          // unique in the process: owner of the threads' plane caches
-  double check_reach_ = 0;    // sqrt(eval_.exact_check_sq): the identical-triangle check's reach
-  Vec3 origin_;               // centre of the target's bounding box
-  double scale_ = 1;          // float frame = (x - origin_) * scale_
-  bool cull_scale_ = true;    // false: the mesh is too small or large to cull (see kMinExtent)
-  double corner_error_ = 0;   // max |float corner - exact corner| in the float frame
-  double packet_extent_ = 0;  // largest packet box diagonal (float frame) for find_batch
+  std::uint64_t id_;        // unique in the process: owner of the threads' plane caches
+  double check_reach_ = 0;  // sqrt(eval_.exact_check_sq): the identical-triangle check's reach
+  detail::FrameMap frame_{{0, 0, 0}, 1};  // float frame = (x - origin) * scale (bbox centred)
+  bool cull_scale_ = true;         // false: the mesh is too small or large to cull (see kMinExtent)
+  double corner_error_ = 0;        // max |float corner - exact corner| in the float frame
+  double packet_extent_ = 0;       // largest packet box diagonal (float frame) for find_batch
   double full_packet_extent_ = 0;  // the same for packets of at least kFullPacket queries
   std::uint32_t root_ = 0;         // child ref of the root
   std::vector<Node> nodes_;

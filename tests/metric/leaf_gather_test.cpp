@@ -201,5 +201,57 @@ TEST(LeafGather, ReportsTooManyBlocksAndTooManyNodes) {
   }
 }
 
+// A query's blocks among a packet's: the definition (box gap squared in float, kept unless above
+// the limit) for every count up to 140, and the AVX version's list equal to the baseline's. Rows
+// past the count hold boxes that would be kept (the query's own point), so a version that read
+// them as blocks would fail; NaN coordinates give SSE's max (the walk's arithmetic).
+TEST(LeafGather, BlocksNearPointEqualTheDefinitionInBothVersions) {
+  const bool avx = simd_level() != SimdLevel::kBaseline;
+  std::mt19937_64 rng(46);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), size(0.0f, 0.6f), reach(0.0f, 0.8f);
+  std::size_t kept_total = 0, rows_total = 0;
+  for (int round = 0; round < 600; ++round) {
+    const std::size_t count = static_cast<std::size_t>(round) % 141;
+    const std::size_t rows = (count + 7) / 8 * 8;
+    const float q[3] = {u(rng), u(rng), u(rng)};
+    alignas(16) float lo[3][144], hi[3][144];
+    for (std::size_t b = 0; b < rows; ++b)
+      for (int a = 0; a < 3; ++a) {
+        lo[a][b] = b < count ? u(rng) : q[a];
+        hi[a][b] = b < count ? lo[a][b] + size(rng) : q[a];
+      }
+    if (count > 3 && round % 5 == 0) lo[1][count / 2] = std::numeric_limits<float>::quiet_NaN();
+    if (count > 3 && round % 5 == 1) hi[2][count / 3] = std::numeric_limits<float>::quiet_NaN();
+    const float r = reach(rng);
+    const float limit2 = r * r;
+    // SSE's max: the second operand where either is NaN.
+    auto max = [](float x, float y) { return x > y ? x : y; };
+    std::vector<std::uint8_t> expected;
+    for (std::size_t b = 0; b < count; ++b) {
+      float gap2 = 0.0f;
+      for (int a = 0; a < 3; ++a) {
+        const float gap = max(max(lo[a][b] - q[a], q[a] - hi[a][b]), 0.0f);
+        gap2 = gap2 + gap * gap;
+      }
+      if (!(gap2 > limit2)) expected.push_back(static_cast<std::uint8_t>(b));
+    }
+    const float* const l[3] = {lo[0], lo[1], lo[2]};
+    const float* const h[3] = {hi[0], hi[1], hi[2]};
+    std::uint8_t which[152];
+    const std::size_t n = detail::blocks_near_point(l, h, count, q, limit2, which);
+    SCOPED_TRACE(testing::Message() << "round " << round << ", " << count << " blocks");
+    ASSERT_EQ(std::vector<std::uint8_t>(which, which + n), expected);
+    kept_total += n;
+    rows_total += count;
+    if (!avx) continue;
+    std::uint8_t fast[152];
+    const std::size_t m = detail::blocks_near_point_avx2(l, h, count, q, limit2, fast);
+    ASSERT_EQ(std::vector<std::uint8_t>(fast, fast + m), expected);
+  }
+  // Neither none nor all: the reach keeps some of the blocks.
+  EXPECT_GT(kept_total, rows_total / 20);
+  EXPECT_LT(kept_total, rows_total / 2);
+}
+
 }  // namespace
 }  // namespace meshdev
