@@ -91,49 +91,63 @@ std::size_t survivors_avx2(const float* bound, std::size_t count, float cutoff, 
   return n;
 }
 
-// Two blocks per register (their four lanes each), with bounds_avx2's operations in its order;
-// an odd last block in the lower half alone (the same operations on 128 bits round the same).
-inline __m256 pair_row(const BlockPlanes& a, const BlockPlanes& b, int r) {
-  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(a.row[r])),
-                              _mm_loadu_ps(b.row[r]), 1);
+// broadcast_min, runner_up_of and first_of on four lanes, for the block bounds below.
+__m128 broadcast_min4(__m128 v) {
+  __m128 m = _mm_min_ps(v, _mm_movehl_ps(v, v));
+  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
+  return _mm_shuffle_ps(m, m, 0);
+}
+float runner_up_of4(__m128 least, __m128 second, __m128 smallest) {
+  const unsigned equal = static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(least, smallest)));
+  const int lane = equal != 0 ? __builtin_ctz(equal) : -1;  // -1: none (no lane given up)
+  const __m128 pick =
+      _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(lane)));
+  return _mm_cvtss_f32(broadcast_min4(_mm_blendv_ps(least, second, pick)));
+}
+std::size_t first_of4(__m128 least, __m128i least_at, __m128 smallest) {
+  const __m128i equal = _mm_castps_si128(_mm_cmpeq_ps(least, smallest));
+  __m128i at = _mm_blendv_epi8(_mm_set1_epi32(0x7fffffff), least_at, equal);
+  at = _mm_min_epu32(at, _mm_shuffle_epi32(at, 0x4e));
+  at = _mm_min_epu32(at, _mm_shuffle_epi32(at, 0xb1));
+  return static_cast<std::size_t>(_mm_cvtsi128_si32(at));
 }
 
 }  // namespace
 
 namespace detail {
 
+// One block per step in four lanes, with bounds_avx2's operations in its order (the same bits).
+// Before, two blocks shared an eight-lane step, whose upper half took a load and an insertion per
+// row, and an odd last block took a whole step: `peer_compare A B 1000000 --ab 8|12`, 1 / 2
+// threads, torus100k -> 1m 1.011 / 1.014, 1.031 / 1.013 and 1.021 / 1.021; torus100k -> 10k
+// 1.002 / 1.005, buildings_s40k -> buildings 0.995 / 1.000, torus100k -> torus1m_shuffled
+// 1.004 / 1.007, armadillo 1.003 / 1.006 (docs/performance-log.md §3, forty-sixth session).
 LeastBounds block_bounds_avx2(const BlockPlanes* const* blocks, const std::uint8_t* which,
                               std::size_t count, const float q[3], float* bound) {
-  const __m256 px = _mm256_set1_ps(q[0]), py = _mm256_set1_ps(q[1]), pz = _mm256_set1_ps(q[2]);
-  const __m256 zero = _mm256_setzero_ps();
-  const __m256 inf = _mm256_set1_ps(__builtin_inff());
-  __m256 least = inf, second = inf;
-  __m256i least_at = _mm256_setzero_si256(), at = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  for (std::size_t j = 0; j < count; j += 2) {
-    const bool pair = j + 1 < count;
+  const __m128 px = _mm_set1_ps(q[0]), py = _mm_set1_ps(q[1]), pz = _mm_set1_ps(q[2]);
+  const __m128 zero = _mm_setzero_ps();
+  __m128 least = _mm_set1_ps(__builtin_inff()), second = least;
+  __m128i least_at = _mm_setzero_si128(), at = _mm_setr_epi32(0, 1, 2, 3);
+  for (std::size_t j = 0; j < count; ++j) {
     const BlockPlanes& a = *blocks[which[j]];
-    const BlockPlanes& b = *blocks[which[pair ? j + 1 : j]];  // an odd last block: a again
     auto plane = [&](int r) {  // (n.p - d) with one rounding per coordinate
-      const __m256 t = _mm256_fmsub_ps(pair_row(a, b, r), px, pair_row(a, b, r + 3));
-      return _mm256_fmadd_ps(pair_row(a, b, r + 2), pz,
-                             _mm256_fmadd_ps(pair_row(a, b, r + 1), py, t));
+      const __m128 t = _mm_fmsub_ps(_mm_load_ps(a.row[r]), px, _mm_load_ps(a.row[r + 3]));
+      return _mm_fmadd_ps(_mm_load_ps(a.row[r + 2]), pz,
+                          _mm_fmadd_ps(_mm_load_ps(a.row[r + 1]), py, t));
     };
-    const __m256 h = plane(kNx);
-    const __m256 o = _mm256_max_ps(
-        _mm256_max_ps(_mm256_max_ps(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
+    const __m128 h = plane(kNx);
+    const __m128 o =
+        _mm_max_ps(_mm_max_ps(_mm_max_ps(plane(kM0x), plane(kM0x + 4)), plane(kM0x + 8)), zero);
     // NaN -> 0: max returns its second operand when either is NaN.
-    const __m256 b2 = _mm256_max_ps(_mm256_fmadd_ps(h, h, _mm256_mul_ps(o, o)), zero);
-    _mm256_storeu_ps(bound + 4 * j, b2);  // an odd last block: its copy in the upper half
-    const __m256 kept = pair ? b2 : _mm256_blend_ps(b2, inf, 0xf0);  // ... not counted twice
-    second = _mm256_min_ps(second, _mm256_max_ps(least, kept));
-    least_at = _mm256_blendv_epi8(least_at, at,
-                                  _mm256_castps_si256(_mm256_cmp_ps(kept, least, _CMP_LT_OQ)));
-    at = _mm256_add_epi32(at, _mm256_set1_epi32(8));
-    least = _mm256_min_ps(kept, least);
+    const __m128 b2 = _mm_max_ps(_mm_fmadd_ps(h, h, _mm_mul_ps(o, o)), zero);
+    _mm_storeu_ps(bound + 4 * j, b2);
+    second = _mm_min_ps(second, _mm_max_ps(least, b2));
+    least_at = _mm_blendv_epi8(least_at, at, _mm_castps_si128(_mm_cmplt_ps(b2, least)));
+    at = _mm_add_epi32(at, _mm_set1_epi32(4));
+    least = _mm_min_ps(b2, least);
   }
-  const __m256 smallest = broadcast_min(least);
-  const float runner_up = runner_up_of(least, second, smallest);
-  return {first_of(least, least_at, smallest), runner_up};
+  const __m128 smallest = broadcast_min4(least);
+  return {first_of4(least, least_at, smallest), runner_up_of4(least, second, smallest)};
 }
 
 }  // namespace detail
