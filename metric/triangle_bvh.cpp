@@ -1569,15 +1569,16 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // whose runner-up lies within the cutoff. Against the exact test query by query
   // (chunk-interleaved, 1 and 2 threads: torus100k -> 1m +6-10 %, torus1m -> 100k +17 %,
   // torus100k -> 10k +10-16 %, armadillo +11 %, buildings +3-8 %; docs/performance-log.md §3).
+  const float* const block_lo[3] = {scratch.block_lo[0], scratch.block_lo[1], scratch.block_lo[2]};
+  const float* const block_hi[3] = {scratch.block_hi[0], scratch.block_hi[1], scratch.block_hi[2]};
   auto select_blocks = [&](std::size_t k) -> std::size_t {
     const float limit2 = round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5));
-    const float* lo[3] = {scratch.block_lo[0], scratch.block_lo[1], scratch.block_lo[2]};
-    const float* hi[3] = {scratch.block_hi[0], scratch.block_hi[1], scratch.block_hi[2]};
 #if defined(MESHDEV_X86_KERNELS)
     if (avx_gather_)
-      return detail::blocks_near_point_avx2(lo, hi, blocks, scratch.qf[k], limit2, which);
+      return detail::blocks_near_point_avx2(block_lo, block_hi, blocks, scratch.qf[k], limit2,
+                                            which);
 #endif
-    return detail::blocks_near_point(lo, hi, blocks, scratch.qf[k], limit2, which);
+    return detail::blocks_near_point(block_lo, block_hi, blocks, scratch.qf[k], limit2, which);
   };
   // Query k's bounds into scratch.bound (count: the selected blocks' lanes), the smallest and the
   // runner-up (NaN bounds become 0: evaluated first, never culled).
