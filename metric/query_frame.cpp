@@ -55,11 +55,12 @@ std::size_t frame_packet_scalar(const Vec3* points, std::size_t count, const Fra
 // frame_query's and frame_packet_scalar's operations in their order, x and y in the two lanes of
 // one register and z in the low lane of another, without a branch per axis: the queries' box
 // starts empty (+inf, -inf), so the first query's min and max are its own coordinates, and a sum
-// that starts from 0 starts from its first term (the squares are >= 0 or NaN). About 45 fewer
-// instructions per query (callgrind, torus100k -> 1m: to_frame's 67 and most of the growth loop's
-// 58 in find_batch); with the block selection in AVX2 lanes (metric/leaf_gather.h), `peer_compare
-// A B 1000000 --ab 8`, 1 / 2 threads: torus100k -> 1m 1.050 / 1.033, the other pairs 1.029-1.045
-// (docs/performance-log.md §3, forty-sixth session); alone, torus100k -> 1m 1.016 / 1.012.
+// that starts from 0 starts from its first term (the squares are >= 0 or NaN). About 60 fewer
+// instructions per query (callgrind, torus100k -> 1m: to_frame's 67 and find_batch's own 90
+// before, frame_packet's 82 and find_batch's 14 after); with the block selection in AVX2 lanes
+// (metric/leaf_gather.h), `peer_compare A B 1000000 --ab 8`, 1 / 2 threads: torus100k -> 1m
+// 1.050 / 1.033, the other pairs 1.029-1.045 (docs/performance-log.md §3, forty-sixth session);
+// alone, torus100k -> 1m 1.016 / 1.012.
 std::size_t frame_packet(const Vec3* points, std::size_t count, const FrameMap& frame,
                          double corner_error, const PacketExtent& extent, float (*qf)[3],
                          double* slack, float lo[3], float hi[3]) {
