@@ -183,7 +183,8 @@ class TriangleBvh final : public NearestPointIndex {
 
   detail::FaceEvaluator eval_;
   const PlaneKernels* kernels_;  // the packet bounds for this CPU (metric/plane_bounds.h)
-  // gather_blocks walks with AVX lane permutations (the CPU runs AVX2, metric/leaf_gather.h).
+  // gather_blocks walks with AVX lane permutations, and a sparse packet's queries choose their
+  // blocks eight at a time (the CPU runs AVX2, metric/leaf_gather.h).
   bool avx_gather_;
   std::uint64_t id_;        // unique in the process: owner of the threads' plane caches
   double check_reach_ = 0;  // sqrt(eval_.exact_check_sq): the identical-triangle check's reach
