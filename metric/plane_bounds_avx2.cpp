@@ -9,17 +9,27 @@
 namespace meshdev {
 namespace {
 
-// The smallest of the eight lanes, in every lane.
-__m256 broadcast_min(__m256 v) {
-  __m128 m = _mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
-  m = _mm_min_ps(m, _mm_movehl_ps(m, m));
+// The smallest of four lanes, in every lane.
+__m128 broadcast_min4(__m128 v) {
+  __m128 m = _mm_min_ps(v, _mm_movehl_ps(v, v));
   m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
-  return _mm256_broadcastss_ps(m);
+  return _mm_shuffle_ps(m, m, 0);
+}
+// The smallest of eight lanes, in every lane: the two halves' minima, then as above.
+__m256 broadcast_min(__m256 v) {
+  return _mm256_broadcastss_ps(
+      broadcast_min4(_mm_min_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1))));
+}
+// The least of four unsigned lanes.
+std::size_t least_index4(__m128i at) {
+  at = _mm_min_epu32(at, _mm_shuffle_epi32(at, 0x4e));
+  at = _mm_min_epu32(at, _mm_shuffle_epi32(at, 0xb1));
+  return static_cast<std::size_t>(_mm_cvtsi128_si32(at));
 }
 
 // The runner-up of bounds whose lanes kept their two smallest (least <= second, lane by lane):
 // the first lane whose least is `smallest` gives its second instead, then the least of all
-// lanes (so two equal smallest bounds give smallest).
+// lanes (so two equal smallest bounds give smallest). Eight lanes, then four.
 float runner_up_of(__m256 least, __m256 second, __m256 smallest) {
   const unsigned equal =
       static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(least, smallest, _CMP_EQ_OQ)));
@@ -28,17 +38,26 @@ float runner_up_of(__m256 least, __m256 second, __m256 smallest) {
       _mm256_cmpeq_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(lane)));
   return _mm256_cvtss_f32(broadcast_min(_mm256_blendv_ps(least, second, pick)));
 }
+float runner_up_of4(__m128 least, __m128 second, __m128 smallest) {
+  const unsigned equal = static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(least, smallest)));
+  const int lane = equal != 0 ? __builtin_ctz(equal) : -1;
+  const __m128 pick =
+      _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(lane)));
+  return _mm_cvtss_f32(broadcast_min4(_mm_blendv_ps(least, second, pick)));
+}
 
 // The index of the smallest bound, the first of equal ones: each lane tracked the index of its
 // first least bound (least_at), and the least of those indices among the lanes whose least is the
-// smallest is the first overall. Without a loop or a branch on the bounds.
+// smallest is the first overall. Without a loop or a branch on the bounds. Eight lanes (the two
+// halves' minima first), then four.
 std::size_t first_of(__m256 least, __m256i least_at, __m256 smallest) {
   const __m256i equal = _mm256_castps_si256(_mm256_cmp_ps(least, smallest, _CMP_EQ_OQ));
-  __m256i at = _mm256_blendv_epi8(_mm256_set1_epi32(0x7fffffff), least_at, equal);
-  at = _mm256_min_epu32(at, _mm256_permute2x128_si256(at, at, 1));
-  at = _mm256_min_epu32(at, _mm256_shuffle_epi32(at, 0x4e));
-  at = _mm256_min_epu32(at, _mm256_shuffle_epi32(at, 0xb1));
-  return static_cast<std::size_t>(_mm256_cvtsi256_si32(at));
+  const __m256i at = _mm256_blendv_epi8(_mm256_set1_epi32(0x7fffffff), least_at, equal);
+  return least_index4(_mm_min_epu32(_mm256_castsi256_si128(at), _mm256_extracti128_si256(at, 1)));
+}
+std::size_t first_of4(__m128 least, __m128i least_at, __m128 smallest) {
+  const __m128i equal = _mm_castps_si128(_mm_cmpeq_ps(least, smallest));
+  return least_index4(_mm_blendv_epi8(_mm_set1_epi32(0x7fffffff), least_at, equal));
 }
 
 // Each lane keeps its two smallest bounds (second = min(second, max(least, b)) before least =
@@ -89,27 +108,6 @@ std::size_t survivors_avx2(const float* bound, std::size_t count, float cutoff, 
     }
   }
   return n;
-}
-
-// broadcast_min, runner_up_of and first_of on four lanes, for the block bounds below.
-__m128 broadcast_min4(__m128 v) {
-  __m128 m = _mm_min_ps(v, _mm_movehl_ps(v, v));
-  m = _mm_min_ss(m, _mm_shuffle_ps(m, m, 1));
-  return _mm_shuffle_ps(m, m, 0);
-}
-float runner_up_of4(__m128 least, __m128 second, __m128 smallest) {
-  const unsigned equal = static_cast<unsigned>(_mm_movemask_ps(_mm_cmpeq_ps(least, smallest)));
-  const int lane = equal != 0 ? __builtin_ctz(equal) : -1;  // -1: none (no lane given up)
-  const __m128 pick =
-      _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(lane)));
-  return _mm_cvtss_f32(broadcast_min4(_mm_blendv_ps(least, second, pick)));
-}
-std::size_t first_of4(__m128 least, __m128i least_at, __m128 smallest) {
-  const __m128i equal = _mm_castps_si128(_mm_cmpeq_ps(least, smallest));
-  __m128i at = _mm_blendv_epi8(_mm_set1_epi32(0x7fffffff), least_at, equal);
-  at = _mm_min_epu32(at, _mm_shuffle_epi32(at, 0x4e));
-  at = _mm_min_epu32(at, _mm_shuffle_epi32(at, 0xb1));
-  return static_cast<std::size_t>(_mm_cvtsi128_si32(at));
 }
 
 }  // namespace
