@@ -34,11 +34,15 @@
 // nearest face differs by far more, except between faces at almost equal distances, which give
 // almost equal distances anyway. Needs two engines.
 // --rounds R: after the table, meshdev and Embree (and Embree+hint with --embree-hint) are timed
-// once each, one after the other, R times over on each thread count, and the ratio of each round
-// is printed with the median and range: on a shared host whose speed drifts over minutes, the
-// best-of-N of engines timed minutes apart can differ by a drift that hits only one of them.
+// once each, one after the other, on each thread count of --threads in turn, R rounds over (the
+// thread counts' order reversed every other round), and the ratio of each run is printed with the
+// median and range: on a shared host whose speed drifts over minutes, the best-of-N of engines
+// timed minutes apart can differ by a drift that hits only one of them. Each round also gives
+// meshdev's speed-up over its first thread count, from runs seconds apart, whose median over the
+// rounds a drift moves far less than the ratio of two medians taken minutes apart.
 // --rounds-csv FILE: each round's throughputs and ratios are also appended to FILE as CSV, one
-// row per (thread count, round), for bench/peers/table_md.py's table of the rounds' medians.
+// row per (round, thread count), for bench/peers/table_md.py's table of the rounds' medians;
+// `start_s` is when the row's meshdev run began, in seconds after the first round's.
 // --ab R: instead of the above, meshdev alone, variant 0 against variant 1 of an experiment
 // (metric/ab_variant.h): the samples are cut into chunks of C (65536), each chunk is answered by
 // both variants in turn, which goes first alternating from chunk to chunk and round to round, and
@@ -638,10 +642,20 @@ double median_of(std::vector<double> v) {
 }
 
 // Appends `rows` to the CSV file at `path`, with `header` first if the file is new or empty.
-// False (with a message on stderr) if the file cannot be written.
+// False (with a message on stderr) if the file cannot be written, or if it starts with another
+// header (a file of an older format: its columns would not match the rows').
 bool append_csv(const std::string& path, const char* header, const std::string& rows) {
   std::ifstream probe(path);
   const bool fresh = !probe.good() || probe.peek() == std::ifstream::traits_type::eof();
+  if (!fresh) {
+    std::string first;
+    std::getline(probe, first);
+    if (first + "\n" != header) {
+      std::fprintf(stderr, "peer_compare: %s has other columns than these rows (%s); not written\n",
+                   path.c_str(), first.c_str());
+      return false;
+    }
+  }
   probe.close();
   std::ofstream f(path, std::ios::app);
   if (fresh) f << header;
@@ -1130,10 +1144,12 @@ int main(int argc, char** argv) {
   const std::string label =
       opt.label.empty() ? basename(opt.a) + "->" + basename(opt.b) : opt.label;
 
-  // (d) Interleaved rounds: one run of meshdev, then of Embree (and Embree+hint), round after
-  // round, so that a drift of the machine's speed over the minutes of a run (a shared host:
-  // 20-30 % seen within a session) falls on both alike. Each round's ratio is printed, then
-  // their median and range per thread count.
+  // (d) Interleaved rounds: one run of meshdev, then of Embree (and Embree+hint), on each thread
+  // count in turn, round after round, so that a drift of the machine's speed over the minutes of
+  // a run (a shared host: 20-30 % seen within a session) falls on the engines, and on the thread
+  // counts, alike. The thread counts go in reverse order every other round, so that neither
+  // always runs first. Each run's ratio is printed, then per thread count their median and range,
+  // and meshdev's speed-up over the first thread count, round by round.
   std::ostringstream rounds_csv;  // --rounds-csv rows
   if (opt.rounds > 0 && wants(opt, "meshdev") && wants(opt, "embree")) {
     auto index = meshdev::make_nearest_point_index(b, meshdev::IndexKind::kBvh);
@@ -1143,38 +1159,57 @@ int main(int argc, char** argv) {
     PeerOut out;
     out.resize(n);
     auto qps = [&](const Timing& t) { return static_cast<double>(n) / t.wall / 1e6; };
-    std::printf("\ninterleaved rounds (meshdev, embree%s, one run each per round):\n",
-                opt.embree_hint ? ", embree+hint" : "");
+    std::printf(
+        "\ninterleaved rounds (meshdev, embree%s, one run each per round and thread "
+        "count):\n",
+        opt.embree_hint ? ", embree+hint" : "");
     std::printf("%3s %5s %10s %10s %10s %12s %12s\n", "thr", "round", "meshdev", "embree",
                 "embree+hint", "meshdev/emb", "meshdev/e+h");
-    for (int th : opt.threads) {
-      std::vector<double> over, over_hint;
-      for (int r = 0; r < opt.rounds; ++r) {
+    const std::size_t counts = opt.threads.size();
+    // [thread count's position in opt.threads][round]
+    std::vector<std::vector<double>> over(counts), over_hint(counts), meshdev_wall(counts);
+    const Clock::time_point rounds_start = Clock::now();
+    for (int r = 0; r < opt.rounds; ++r) {
+      for (std::size_t step = 0; step < counts; ++step) {
+        const std::size_t t = r % 2 == 0 ? step : counts - 1 - step;
+        const int th = opt.threads[t];
+        const double start_s = std::chrono::duration<double>(Clock::now() - rounds_start).count();
         const Timing m = time_best(1, th, [&] { meshdev_queries(*index, th); });
         const Timing e = time_best(1, th, [&] { embree_run(arrays, scene.scene, false, th, out); });
         Timing h{std::numeric_limits<double>::quiet_NaN(), 0};
         if (opt.embree_hint)
           h = time_best(1, th, [&] { embree_run(arrays, scene.scene, true, th, out); });
-        over.push_back(e.wall / m.wall);
-        if (opt.embree_hint) over_hint.push_back(h.wall / m.wall);
+        meshdev_wall[t].push_back(m.wall);
+        over[t].push_back(e.wall / m.wall);
+        if (opt.embree_hint) over_hint[t].push_back(h.wall / m.wall);
         std::printf("%3d %5d %10.3f %10.3f %10.3f %12.2f %12.2f\n", th, r + 1, qps(m), qps(e),
                     qps(h), e.wall / m.wall, h.wall / m.wall);
         char line[512];
         std::snprintf(line, sizeof line,
-                      "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s\n", label.c_str(),
-                      basename(opt.a).c_str(), basename(opt.b).c_str(), a.num_faces(),
-                      b.num_faces(), n, opt.order.c_str(), th, r + 1, qps(m) * 1e6, qps(e) * 1e6,
-                      qps(h) * 1e6, e.wall / m.wall, h.wall / m.wall,
-                      load_start.substr(0, load_start.find(' ')).c_str());
+                      "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s,%.3f\n",
+                      label.c_str(), basename(opt.a).c_str(), basename(opt.b).c_str(),
+                      a.num_faces(), b.num_faces(), n, opt.order.c_str(), th, r + 1, qps(m) * 1e6,
+                      qps(e) * 1e6, qps(h) * 1e6, e.wall / m.wall, h.wall / m.wall,
+                      load_start.substr(0, load_start.find(' ')).c_str(), start_s);
         rounds_csv << line;
       }
-      const auto [lo, hi] = std::minmax_element(over.begin(), over.end());
-      std::printf("%3d median meshdev/embree %.2f (range %.2f-%.2f)", th, median_of(over), *lo,
-                  *hi);
-      if (!over_hint.empty()) {
-        const auto [lo_h, hi_h] = std::minmax_element(over_hint.begin(), over_hint.end());
-        std::printf(", meshdev/embree+hint %.2f (range %.2f-%.2f)", median_of(over_hint), *lo_h,
+    }
+    for (std::size_t t = 0; t < counts; ++t) {
+      const auto [lo, hi] = std::minmax_element(over[t].begin(), over[t].end());
+      std::printf("%3d median meshdev/embree %.2f (range %.2f-%.2f)", opt.threads[t],
+                  median_of(over[t]), *lo, *hi);
+      if (!over_hint[t].empty()) {
+        const auto [lo_h, hi_h] = std::minmax_element(over_hint[t].begin(), over_hint[t].end());
+        std::printf(", meshdev/embree+hint %.2f (range %.2f-%.2f)", median_of(over_hint[t]), *lo_h,
                     *hi_h);
+      }
+      if (t > 0) {  // each round's speed-up: the first thread count's time over this one's
+        std::vector<double> gain;
+        for (int r = 0; r < opt.rounds; ++r)
+          gain.push_back(meshdev_wall[0][r] / meshdev_wall[t][r]);
+        const auto [lo_s, hi_s] = std::minmax_element(gain.begin(), gain.end());
+        std::printf(", meshdev %d over %d threads %.2f (range %.2f-%.2f)", opt.threads[t],
+                    opt.threads[0], median_of(gain), *lo_s, *hi_s);
       }
       std::printf(" over %d rounds\n", opt.rounds);
     }
@@ -1206,7 +1241,7 @@ int main(int argc, char** argv) {
   // Embree+hint's columns are nan without --embree-hint.
   const char* rounds_header =
       "label,a,b,a_faces,b_faces,samples,order,threads,round,meshdev_qps,embree_qps,"
-      "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start\n";
+      "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start,start_s\n";
   if (!opt.rounds_csv.empty())
     written = append_csv(opt.rounds_csv, rounds_header, rounds_csv.str()) && written;
   if (!agreed)

@@ -18,7 +18,8 @@
 # with an error if meshdev, Embree and CGAL give per-sample distances more than CHECK times B's
 # diagonal apart. OUT: where the files above go (bench/smoke.sh, run by CI, writes elsewhere).
 # ROUNDS: the pairs are also timed in interleaved rounds (peer_compare --rounds: meshdev, Embree
-# and Embree+hint one run each per round), whose median ratios hold on a host whose speed drifts.
+# and Embree+hint one run each per round and thread count, 1 and 2 threads in the same round),
+# whose median ratios (to Embree, and 2 threads to 1) hold on a host whose speed drifts.
 # Needs: apt-get install -y libembree-dev libcgal-dev libtbb-dev libbenchmark-dev meshlab xvfb xauth
 # The machine should be quiet: every loop prints its CPU share and the load average.
 set -euo pipefail
