@@ -39,7 +39,8 @@
 // median and range: on a shared host whose speed drifts over minutes, the best-of-N of engines
 // timed minutes apart can differ by a drift that hits only one of them. Each round also gives
 // meshdev's speed-up over its first thread count, from runs seconds apart, whose median over the
-// rounds a drift moves far less than the ratio of two medians taken minutes apart.
+// rounds a drift moves far less than the ratio of two medians taken minutes apart. One untimed
+// run of each engine goes first (the first touch of meshdev's result arrays).
 // --rounds-csv FILE: each round's throughputs and ratios are also appended to FILE as CSV, one
 // row per (round, thread count), for bench/peers/table_md.py's table of the rounds' medians;
 // `start_s` is when the row's meshdev run began, in seconds after the first round's.
@@ -1165,6 +1166,12 @@ int main(int argc, char** argv) {
         opt.embree_hint ? ", embree+hint" : "");
     std::printf("%3s %5s %10s %10s %10s %12s %12s\n", "thr", "round", "meshdev", "embree",
                 "embree+hint", "meshdev/emb", "meshdev/e+h");
+    // One untimed run of each engine first: the first run after the index was built faulted in
+    // the pages of its result arrays (torus100k -> 10k: 4,883 page faults, and 6.1-6.5 M/s
+    // against 8.7-9.3 in the later 1-thread rounds), which only the first round paid.
+    meshdev_queries(*index, opt.threads.back());
+    embree_run(arrays, scene.scene, false, opt.threads.back(), out);
+    if (opt.embree_hint) embree_run(arrays, scene.scene, true, opt.threads.back(), out);
     const std::size_t counts = opt.threads.size();
     // [thread count's position in opt.threads][round]
     std::vector<std::vector<double>> over(counts), over_hint(counts), meshdev_wall(counts);
