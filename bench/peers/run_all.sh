@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Builds and runs the whole peer comparison, writing
 #   results/performance/peers.csv     one row per (series, pair, engine, threads) from peer_compare
-#   results/performance/rounds.csv    the pairs' interleaved rounds, one row per (pair, threads, round)
+#   results/performance/rounds.csv    the pairs' interleaved rounds, one row per (pair, round, threads)
+#   results/performance/host.csv      bench/peers/host_probe before and after the pairs: the host's
+#                                     arithmetic, memory latency and bandwidth on 1 and 2 threads
 #   results/performance/meshlab.csv   whole-process meshdev compare vs meshlabserver
 #   results/performance/peers.png     throughput vs faces of B and vs samples (matplotlib)
 #   results/performance/peers_per_cpu.png  the same per CPU-second (fair on a loaded machine)
@@ -36,7 +38,14 @@ say() { echo "$@" | tee -a "$log"; }
 say "== build ($build)"
 cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DMESHDEV_BUILD_BENCH=ON \
   -DMESHDEV_BUILD_PEERS=ON -DMESHDEV_BUILD_TESTS=OFF -DMESHDEV_BUILD_EXAMPLES=OFF >>"$log" 2>&1
-make -C "$build" -j2 peer_compare peer_mesh_tool meshdev >>"$log" 2>&1
+make -C "$build" -j2 peer_compare peer_mesh_tool host_probe meshdev >>"$log" 2>&1
+probe() {  # the host's state now (bench/peers/host_probe.cpp), into the log and host.csv
+  say "== host_probe ($1)"
+  "$build/bench/peers/host_probe" --rounds "$probe_rounds" --csv "$out/host.csv" 2>&1 | tee -a "$log"
+}
+probe_rounds=5
+[[ "${QUICK:-0}" == 1 ]] && probe_rounds=1
+rm -f "$out/host.csv"
 
 say "== inputs"
 "$repo/bench/peers/make_inputs.sh" "$build" 2>&1 | tee -a "$log"
@@ -53,12 +62,14 @@ csv="$out/peers.csv"
 rounds_csv="$out/rounds.csv"
 rm -f "$csv" "$rounds_csv"
 pc="$build/bench/peers/peer_compare"
+probe "before the pairs"
 say "== peer_compare: N=$n, best of $reps, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 while read -r label a b; do
   say "-- pairs|$label"
   "$pc" "$a" "$b" "$n" --repeats "$reps" --embree-hint --rounds "$rounds" --label "pairs|$label" \
     --check "$check" --csv "$csv" --rounds-csv "$rounds_csv" 2>&1 | sed '/^CSV$/,$d' | tee -a "$log"
 done < "$in/pairs.txt"
+probe "after the pairs"
 for f in 10000 50176 99856 250000; do
   say "-- faces|torus100k->$f"
   "$pc" "$in/torus100k.ply" "$in/torusB_$f.ply" "$n" --repeats "$reps" --embree-hint \
