@@ -40,10 +40,14 @@
 // timed minutes apart can differ by a drift that hits only one of them. Each round also gives
 // meshdev's speed-up over its first thread count, from runs seconds apart, whose median over the
 // rounds a drift moves far less than the ratio of two medians taken minutes apart. One untimed
-// run of each engine goes first (the first touch of meshdev's result arrays).
+// run of each engine goes first (the first touch of meshdev's result arrays). Before each
+// meshdev run a probe of the host (pipes_probe: 16 chains of multiply-adds, ~15 ms) is timed on
+// the same thread count, and the probe's own speed-up is printed beside meshdev's: below 2 where
+// the host gave the process less than two physical cores.
 // --rounds-csv FILE: each round's throughputs and ratios are also appended to FILE as CSV, one
 // row per (round, thread count), for bench/peers/table_md.py's table of the rounds' medians;
-// `start_s` is when the row's meshdev run began, in seconds after the first round's.
+// `start_s` is when the row's meshdev run began, in seconds after the first round's, and
+// `probe_s` the seconds of the host probe just before it.
 // --ab R: instead of the above, meshdev alone, variant 0 against variant 1 of an experiment
 // (metric/ab_variant.h): the samples are cut into chunks of C (65536), each chunk is answered by
 // both variants in turn, which goes first alternating from chunk to chunk and round to round, and
@@ -152,6 +156,28 @@ struct Timing {
   double wall = 0, share = 0;
   double first = 0;
 };
+
+// The host's capacity on `threads` threads now: the seconds of 2^23 steps of sixteen independent
+// chains of multiply-adds split over them (bench/peers/host_probe.cpp's throughput-bound
+// "pipes" kernel, about 15 ms on one thread here). Taken before each meshdev run of the rounds:
+// the 1-thread time over the 2-thread one is 2 where the host gives two physical cores, about
+// 1.4 where it runs both vCPUs on one core's two hardware threads.
+double pipes_probe(int threads) {
+  constexpr long kSteps = 1L << 23;
+  double sink = 0.0;
+  const auto t0 = Clock::now();
+#pragma omp parallel num_threads(threads) reduction(+ : sink)
+  {
+    double v[16];
+    for (int k = 0; k < 16; ++k) v[k] = 1.0 + 0.01 * k;
+    for (long i = 0; i < kSteps / threads; ++i)
+#pragma GCC unroll 16
+      for (int k = 0; k < 16; ++k) v[k] = v[k] * 0.9999999 + 1e-9;
+    for (int k = 0; k < 16; ++k) sink += v[k];
+  }
+  const double seconds = seconds_since(t0);
+  return sink == 0.0 ? -seconds : seconds;  // sink is never 0: keeps the work
+}
 
 template <class F>
 Timing time_best(int repeats, int threads, F&& run) {
@@ -1174,12 +1200,14 @@ int main(int argc, char** argv) {
     if (opt.embree_hint) embree_run(arrays, scene.scene, true, opt.threads.back(), out);
     const std::size_t counts = opt.threads.size();
     // [thread count's position in opt.threads][round]
-    std::vector<std::vector<double>> over(counts), over_hint(counts), meshdev_wall(counts);
+    std::vector<std::vector<double>> over(counts), over_hint(counts), meshdev_wall(counts),
+        probe(counts);
     const Clock::time_point rounds_start = Clock::now();
     for (int r = 0; r < opt.rounds; ++r) {
       for (std::size_t step = 0; step < counts; ++step) {
         const std::size_t t = r % 2 == 0 ? step : counts - 1 - step;
         const int th = opt.threads[t];
+        const double probe_s = pipes_probe(th);
         const double start_s = std::chrono::duration<double>(Clock::now() - rounds_start).count();
         const Timing m = time_best(1, th, [&] { meshdev_queries(*index, th); });
         const Timing e = time_best(1, th, [&] { embree_run(arrays, scene.scene, false, th, out); });
@@ -1187,17 +1215,18 @@ int main(int argc, char** argv) {
         if (opt.embree_hint)
           h = time_best(1, th, [&] { embree_run(arrays, scene.scene, true, th, out); });
         meshdev_wall[t].push_back(m.wall);
+        probe[t].push_back(probe_s);
         over[t].push_back(e.wall / m.wall);
         if (opt.embree_hint) over_hint[t].push_back(h.wall / m.wall);
         std::printf("%3d %5d %10.3f %10.3f %10.3f %12.2f %12.2f\n", th, r + 1, qps(m), qps(e),
                     qps(h), e.wall / m.wall, h.wall / m.wall);
         char line[512];
         std::snprintf(line, sizeof line,
-                      "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s,%.3f\n",
+                      "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s,%.3f,%.5f\n",
                       label.c_str(), basename(opt.a).c_str(), basename(opt.b).c_str(),
                       a.num_faces(), b.num_faces(), n, opt.order.c_str(), th, r + 1, qps(m) * 1e6,
                       qps(e) * 1e6, qps(h) * 1e6, e.wall / m.wall, h.wall / m.wall,
-                      load_start.substr(0, load_start.find(' ')).c_str(), start_s);
+                      load_start.substr(0, load_start.find(' ')).c_str(), start_s, probe_s);
         rounds_csv << line;
       }
     }
@@ -1217,6 +1246,11 @@ int main(int argc, char** argv) {
         const auto [lo_s, hi_s] = std::minmax_element(gain.begin(), gain.end());
         std::printf(", meshdev %d over %d threads %.2f (range %.2f-%.2f)", opt.threads[t],
                     opt.threads[0], median_of(gain), *lo_s, *hi_s);
+        std::vector<double> host;  // the same for the probe before each run (ideal: the ratio
+        for (int r = 0; r < opt.rounds; ++r)  // of the thread counts)
+          host.push_back(probe[0][r] / probe[t][r]);
+        const auto [lo_p, hi_p] = std::minmax_element(host.begin(), host.end());
+        std::printf(", the host's probe %.2f (range %.2f-%.2f)", median_of(host), *lo_p, *hi_p);
       }
       std::printf(" over %d rounds\n", opt.rounds);
     }
@@ -1248,7 +1282,7 @@ int main(int argc, char** argv) {
   // Embree+hint's columns are nan without --embree-hint.
   const char* rounds_header =
       "label,a,b,a_faces,b_faces,samples,order,threads,round,meshdev_qps,embree_qps,"
-      "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start,start_s\n";
+      "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start,start_s,probe_s\n";
   if (!opt.rounds_csv.empty())
     written = append_csv(opt.rounds_csv, rounds_header, rounds_csv.str()) && written;
   if (!agreed)

@@ -100,6 +100,21 @@ def speedup_of(rows, label):
     return med(by["2"].values()) / med(by["1"].values()), False
 
 
+def host_rounds(rows, label):
+    """The host probe before each meshdev run of one pair's rounds (files with a probe_s column,
+    since the forty-seventh session): {round: the probe's 2-thread speed-up}, 1-thread time over
+    2-thread time (2 where the host gave two physical cores). Empty for older files."""
+    if not rows or "probe_s" not in rows[0]:
+        return {}
+    by = {t: {r["round"]: float(r["probe_s"]) for r in rows
+              if r["label"] == label and r["threads"] == t} for t in ("1", "2")}
+    return {k: by["1"][k] / by["2"][k] for k in by["1"] if k in by["2"]}
+
+
+# A round whose host probe gave at least this 2-thread speed-up had two physical cores.
+kFullHost = 1.9
+
+
 def rounds(runs):
     """runs: [(rounds rows, peers rows or None)], one per run."""
     med = statistics.median
@@ -109,10 +124,11 @@ def rounds(runs):
 
     pairs = labels_of([r for rows, _ in runs for r in rows])
     print("| pair | meshdev M/s, 1 / 2 threads | ÷ Embree, 1 thread | ÷ Embree, 2 threads "
-          "| ÷ Embree+hint, 2 threads | 2-thread speed-up (best-of; rounds) |")
-    print("|---|---:|---:|---:|---:|---:|")
+          "| ÷ Embree+hint, 2 threads | 2-thread speed-up (best-of; rounds) "
+          "| the host probe's 2-thread speed-up |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
     for label in pairs:
-        cells = [[], [], [], [], []]
+        cells = [[], [], [], [], [], []]
         for rows, best in runs:
             by = {t: [r for r in rows if r["label"] == label and r["threads"] == t]
                   for t in ("1", "2")}
@@ -134,10 +150,14 @@ def rounds(runs):
                 if "1" in m and "2" in m:
                     speedup = f"{m['2'] / m['1']:.2f}; " + speedup
             cells[4].append(speedup)
+            host = list(host_rounds(rows, label).values())
+            cells[5].append(span(host) if host else "–")
         print(f"| {pair_name(label)} | " + " | ".join(" · ".join(c) for c in cells) + " |")
     print("\nMedians over each run's rounds (range); runs separated by \" · \". The rounds' "
           "speed-up: the median of each round's 2-thread over 1-thread throughput where the "
-          "round ran both (files with `start_s`), else the ratio of the two medians.\n")
+          "round ran both (files with `start_s`), else the ratio of the two medians. The host "
+          "probe (files with `probe_s`): 16 chains of multiply-adds timed before each meshdev "
+          "run, its 1-thread over 2-thread time in each round (2: two physical cores).\n")
 
 
 def build_lines(log_path, pair):
@@ -170,6 +190,20 @@ def targets(rounds_path, peers_path, log_path, meshlab_paths):
     def verdict(ok):
         return "met" if ok else "**missed**"
 
+    def full_host(label):
+        """A note on the rounds whose host probe gave two physical cores (files with probe_s):
+        their 2-thread median, beside the verdict on every round (which stays the verdict)."""
+        host = host_rounds(rows, label)
+        if not host:
+            return ""
+        full = [float(r["meshdev_qps"]) / 1e6 for r in rounds_of(label, "2")
+                if host.get(r["round"], 0.0) >= kFullHost]
+        text = f"; the host probe {min(host.values()):.2f}–{max(host.values()):.2f}×"
+        if not full:
+            return text + f", no round at {kFullHost}× or more"
+        return text + (f"; in the {len(full)} of {len(host)} rounds where it gave {kFullHost}× "
+                       f"or more, {med(full):.2f} M/s")
+
     samples = max((int(r["samples"]) for r in rows), default=0)
     print(f"| target (2 threads unless said) | measured (rounds' medians unless said; up to "
           f"{samples:,} samples, the targets' are 1M) | |")
@@ -180,7 +214,8 @@ def targets(rounds_path, peers_path, log_path, meshlab_paths):
             print(f"| ≥ 10 M samples/s on {pair_name(label)} | not in this run | – |")
             continue
         q = med([float(r["meshdev_qps"]) for r in rounds_of(label, "2")]) / 1e6
-        print(f"| ≥ 10 M samples/s on {pair_name(label)} | {q:.2f} M/s | {verdict(q >= 10)} |")
+        print(f"| ≥ 10 M samples/s on {pair_name(label)} | {q:.2f} M/s{full_host(label)} "
+              f"| {verdict(q >= 10)} |")
     for label in issue_pairs:
         if not rounds_of(label, "1") or not rounds_of(label, "2"):
             print(f"| ≥ 3× Embree on {pair_name(label)} | not in this run | – |")
@@ -216,6 +251,22 @@ def targets(rounds_path, peers_path, log_path, meshlab_paths):
         met = len(speedups) - len(below)
         how = ("median of the rounds' own ratios" if paired
                else "ratio of the 1- and 2-thread medians")
+        # Beside it, the host probe's speed-ups in the same rounds, and meshdev's own in the
+        # rounds where the probe gave two physical cores (notes: the verdict is on every round).
+        probes, full = [], []
+        for label in labels_of(rows):
+            host = host_rounds(rows, label)
+            probes += host.values()
+            q = {t: {r["round"]: float(r["meshdev_qps"]) for r in rounds_of(label, t)}
+                 for t in ("1", "2")}
+            full += [q["2"][k] / q["1"][k] for k, x in host.items()
+                     if x >= kFullHost and k in q["1"] and k in q["2"]]
+        if probes:
+            how += (f"; the host probe {min(probes):.2f}–{max(probes):.2f}× in those rounds, "
+                    f"{sum(x < kFullHost for x in probes)} of {len(probes)} below {kFullHost}×")
+        if full:
+            how += (f"; meshdev in the {len(full)} rounds at {kFullHost}× or more: median "
+                    f"{med(full):.2f}×, {sum(x < 1.8 for x in full)} below 1.8×")
         print(f"| 2-thread speed-up ≥ 1.8× | {min(speedups)[0]:.2f}–{max(speedups)[0]:.2f}× on "
               f"{len(speedups)} pairs ({how}) | " + (verdict(True) if not below else
                                               f"met on {met} of {len(speedups)}; below: "
