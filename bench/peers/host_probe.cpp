@@ -33,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/peers/fp_chains.h"
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -45,20 +47,6 @@ double median_of(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t m = v.size() / 2;
   return v.size() % 2 == 1 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
-
-// `iterations` steps of K independent chains of dependent multiply-adds; their sum, so nothing
-// is dropped.
-template <int K>
-double chains(long iterations) {
-  double v[K];
-  for (int k = 0; k < K; ++k) v[k] = 1.0 + 0.01 * k;
-  for (long i = 0; i < iterations; ++i)
-#pragma GCC unroll 16
-    for (int k = 0; k < K; ++k) v[k] = v[k] * 0.9999999 + 1e-9;
-  double sum = 0.0;
-  for (int k = 0; k < K; ++k) sum += v[k];
-  return sum;
 }
 
 // One random cycle through all n slots (Sattolo's algorithm), so a walk never short-circuits.
@@ -120,14 +108,14 @@ int main(int argc, char** argv) {
       Clock::time_point t0 = Clock::now();
       double sum = 0.0;
 #pragma omp parallel num_threads(threads) reduction(+ : sum)
-      sum += chains<4>(kChainSteps / threads);
+      sum += meshdev_bench::fp_chains<4>(kChainSteps / threads);
       compute.value[t].push_back(seconds_since(t0));
       sink += sum;
 
       t0 = Clock::now();
       sum = 0.0;
 #pragma omp parallel num_threads(threads) reduction(+ : sum)
-      sum += chains<16>(kPipeSteps / threads);
+      sum += meshdev_bench::fp_chains<16>(kPipeSteps / threads);
       pipes.value[t].push_back(seconds_since(t0));
       sink += sum;
 

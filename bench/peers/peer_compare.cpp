@@ -83,6 +83,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/peers/fp_chains.h"
 #include "metric/ab_variant.h"
 #include "metric/attribute_deviation.h"
 #include "metric/attributes.h"
@@ -158,25 +159,20 @@ struct Timing {
 };
 
 // The host's capacity on `threads` threads now: the seconds of 2^23 steps of sixteen independent
-// chains of multiply-adds split over them (bench/peers/host_probe.cpp's throughput-bound
-// "pipes" kernel, about 15 ms on one thread here). Taken before each meshdev run of the rounds:
-// the 1-thread time over the 2-thread one is 2 where the host gives two physical cores, about
-// 1.4 where it runs both vCPUs on one core's two hardware threads.
+// chains of multiply-adds split over them (fp_chains<16>, host_probe's throughput-bound "pipes"
+// kernel, about 15 ms on one thread here). Taken before each meshdev run of the rounds: the
+// 1-thread time over the 2-thread one is 2 where the host gives two physical cores, about 1.4
+// where it runs both vCPUs on one core's two hardware threads.
+volatile double g_probe_sink = 0.0;  // the probe's sums, kept so that the work is done
 double pipes_probe(int threads) {
   constexpr long kSteps = 1L << 23;
-  double sink = 0.0;
+  double sum = 0.0;
   const auto t0 = Clock::now();
-#pragma omp parallel num_threads(threads) reduction(+ : sink)
-  {
-    double v[16];
-    for (int k = 0; k < 16; ++k) v[k] = 1.0 + 0.01 * k;
-    for (long i = 0; i < kSteps / threads; ++i)
-#pragma GCC unroll 16
-      for (int k = 0; k < 16; ++k) v[k] = v[k] * 0.9999999 + 1e-9;
-    for (int k = 0; k < 16; ++k) sink += v[k];
-  }
+#pragma omp parallel num_threads(threads) reduction(+ : sum)
+  sum += meshdev_bench::fp_chains<16>(kSteps / threads);
   const double seconds = seconds_since(t0);
-  return sink == 0.0 ? -seconds : seconds;  // sink is never 0: keeps the work
+  g_probe_sink = g_probe_sink + sum;
+  return seconds;
 }
 
 template <class F>

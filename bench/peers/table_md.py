@@ -84,14 +84,19 @@ def labels_of(rows):
     return list(OrderedDict.fromkeys(r["label"] for r in rows))
 
 
+def by_round(rows, label, column):
+    """One pair's rounds in a rounds CSV: {thread count: {round: float(column)}} for 1 and 2."""
+    return {t: {r["round"]: float(r[column]) for r in rows
+                if r["label"] == label and r["threads"] == t} for t in ("1", "2")}
+
+
 def speedup_of(rows, label):
     """meshdev's 2-thread speed-up on one pair of a rounds CSV: (value, paired). Rounds that ran
     both thread counts seconds apart (files with a start_s column, since the forty-seventh
     session) give the median of each round's ratio; older files, whose 1-thread rounds all ran
     before the 2-thread ones, the ratio of the two medians. None if a thread count is missing."""
     med = statistics.median
-    by = {t: {r["round"]: float(r["meshdev_qps"]) for r in rows
-              if r["label"] == label and r["threads"] == t} for t in ("1", "2")}
+    by = by_round(rows, label, "meshdev_qps")
     if not by["1"] or not by["2"]:
         return None
     if "start_s" in rows[0]:
@@ -106,8 +111,7 @@ def host_rounds(rows, label):
     2-thread time (2 where the host gave two physical cores). Empty for older files."""
     if not rows or "probe_s" not in rows[0]:
         return {}
-    by = {t: {r["round"]: float(r["probe_s"]) for r in rows
-              if r["label"] == label and r["threads"] == t} for t in ("1", "2")}
+    by = by_round(rows, label, "probe_s")
     return {k: by["1"][k] / by["2"][k] for k in by["1"] if k in by["2"]}
 
 
@@ -259,8 +263,7 @@ def targets(rounds_path, peers_path, log_path, meshlab_paths):
         for label in labels_of(rows):
             host = host_rounds(rows, label)
             probes += host.values()
-            q = {t: {r["round"]: float(r["meshdev_qps"]) for r in rounds_of(label, t)}
-                 for t in ("1", "2")}
+            q = by_round(rows, label, "meshdev_qps")
             full += [q["2"][k] / q["1"][k] for k, x in host.items()
                      if x >= kFullHost and k in q["1"] and k in q["2"]]
         if probes:
