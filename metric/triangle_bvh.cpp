@@ -508,21 +508,29 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   if (morton_splits_) sort_along_morton_curve(prims, n, root_centres.box(), team, codes);
   // The binary tree has at most 2n - 1 nodes; children are allocated in pairs, so subtrees can
   // be built in parallel (OpenMP tasks above kTaskBelow faces): above kTaskBelow faces from a
-  // shared counter; a subtree of c <= kTaskBelow faces, which one thread builds, takes 2c ids
-  // from it at once (enough for any such subtree) and allocates from those in turn (its `pool`),
-  // so its nodes lie together in memory. From the shared counter alone, the two threads' nodes
+  // shared counter; a subtree of at most kTaskBelow faces, which one thread builds, from that
+  // thread's `Cursor`, a run of kCursorIds ids taken from the shared counter at a time, so its
+  // nodes lie together in memory. From the shared counter alone, the two threads' nodes
   // alternated, two to a cache line: the threads wrote each other's lines (torus1m's splits took
-  // 81 ms on 2 threads instead of 60) and the collapse read twice the lines. Only the ids used
-  // are written. The tree's shape does not depend on the thread count: each split depends only
-  // on its own range of faces.
+  // 81 ms on 2 threads instead of 60) and the collapse read twice the lines. The ids handed out
+  // are dense (a thread's last run at most unused), so the tree's written memory is one prefix of
+  // its storage, which the leaf blocks then take over (below); before, each such subtree took 2c
+  // ids at once for its c faces and wrote about a quarter of them. The tree's shape does not
+  // depend on the thread count: each split depends only on its own range of faces.
+  constexpr std::uint32_t kCursorIds = 4096;  // 128 KB of nodes
+  struct alignas(64) Cursor {                 // a thread's own line: no false sharing
+    std::uint32_t next = 0, end = 0;          // its run of ids
+    std::uint32_t taken = 0;                  // ids it handed out
+  };
+  std::vector<Cursor> cursors(static_cast<std::size_t>(team));
   const std::size_t max_nodes =
-      2 * static_cast<std::size_t>(n) + 2 * (kMaxBinaryDepth + 1) * (n / kTaskBelow + 1) + 2;
-  std::unique_ptr<BinaryNode[]> tree(new BinaryNode[max_nodes]);
+      2 * static_cast<std::size_t>(n) + static_cast<std::size_t>(team) * kCursorIds + 2;
+  RawArray<BinaryNode> tree(max_nodes);  // its storage then holds the leaf blocks (below)
   std::atomic<std::uint32_t> next_node{1};
   std::atomic<std::uint32_t> used_nodes{1};
   auto split = [&](auto&& self, std::uint32_t node, std::uint32_t begin, std::uint32_t end,
                    int depth, bool known, Bounds bounds, Bounds centre_bounds, bool long_runs,
-                   int sorted_axis, std::uint32_t* pool) -> detail::CollapseCosts {
+                   int sorted_axis, Cursor* pool) -> detail::CollapseCosts {
     assert(depth <= kMaxBinaryDepth);
     Prim* const first = prims.get();
     // A Morton split needs no pass over the range: the node's box is its children's, set after
@@ -742,14 +750,21 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
         children_known = true;
       }
     }
-    std::uint32_t own = 0, own_first = 0;  // the pool this subtree starts, if it does
-    if (pool == nullptr && count <= kTaskBelow) {
-      own = own_first = next_node.fetch_add(2 * count);
-      pool = &own;
-    } else if (pool == nullptr) {
+    if (pool == nullptr && count <= kTaskBelow)
+      pool = &cursors[static_cast<std::size_t>(omp_get_thread_num())];
+    std::uint32_t left_child;
+    if (pool != nullptr) {
+      if (pool->next == pool->end) {
+        pool->next = next_node.fetch_add(kCursorIds);
+        pool->end = pool->next + kCursorIds;
+      }
+      left_child = pool->next;
+      pool->next += 2;
+      pool->taken += 2;
+    } else {
+      left_child = next_node.fetch_add(2);
       used_nodes.fetch_add(2);
     }
-    const std::uint32_t left_child = pool != nullptr ? (*pool += 2) - 2 : next_node.fetch_add(2);
     assert(left_child + 1 < max_nodes);
     tree[node].index = left_child;
     tree[node].count = 0;
@@ -766,10 +781,6 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
                       child_centres[0], children_long_runs, children_sorted_axis, pool);
       costs[1] = self(self, left_child + 1, mid, end, depth + 1, children_known, child_bounds[1],
                       child_centres[1], children_long_runs, children_sorted_axis, pool);
-      if (pool == &own) {
-        assert(own - own_first <= 2 * count);
-        used_nodes.fetch_add(own - own_first);
-      }
     }
     if (by_code) {
       const BinaryNode &l = tree[left_child], &r = tree[left_child + 1];
@@ -785,6 +796,10 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
 #pragma omp parallel num_threads(team)
 #pragma omp single
   split(split, 0, 0, n, 1, true, root_bounds, root_centres, true, -1, nullptr);
+  for (const Cursor& cursor : cursors) used_nodes += cursor.taken;
+  // The tree's nodes lie in ids [0, written_nodes): its storage's only bytes written so far.
+  const std::size_t written_nodes = next_node.load();
+  assert(used_nodes.load() <= written_nodes && written_nodes <= max_nodes);
 
   // The leaf blocks in the order of the face records: block l holds the faces at positions
   // leaf_first[l] .. leaf_first[l + 1] - 1 (leaf_first[blocks] = n). The collapse below keeps
@@ -828,7 +843,7 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   // threads, the builds and other pairs within noise (`peer_compare A B 1000000 --ab 8
   // --ab-build`, docs/performance-log.md §3).
   nodes_.clear();
-  leaves_.clear();
+  leaves_ = RawArray<Leaf>();
   nodes_.reserve(used_nodes.load() / 3 + 1);
   std::uint32_t next_block = 0;  // blocks numbered so far, depth first
   depth_ = 0;
@@ -870,22 +885,45 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   // 2 threads, torus1m_shuffled 1.044 / 1.030, and 1.087 / 1.091 more once each corner came by
   // one load instead of a gather per axis, docs/performance-log.md §3).
   const auto leaf_count = static_cast<std::int64_t>(blocks);
-  leaves_.resize(blocks);  // raw storage: each block is written in full below
+  // The blocks go into the binary tree's storage once the collapse has read it (where they fit:
+  // 176 bytes a block against 32 a node and at least 2n nodes, so wherever the blocks hold 2.75
+  // faces or more on average, as the small subtrees' splits into full blocks of 4 make them),
+  // else into storage of their own. The tree's written prefix (about 16 bytes a face) is then
+  // already the process's memory, and the blocks take no page faults there, nor does the process
+  // hold both at once: torus1m's first build in peer_compare 16,009 -> 11,855 page faults, the
+  // process's peak 364 -> 331 MiB; `meshdev compare torus100k.ply torus1m.ply` (1M Monte Carlo
+  // samples) 40,750 -> 39,100 faults, peak RSS 167,300 -> 160,700 KiB. The same trees, bit for bit;
+  // the builds' time the same within this host's noise (first builds old / new 1.002 over 8
+  // alternating pairs of processes; docs/performance-log.md §3, forty-eighth session).
+  const std::size_t block_bytes = blocks * sizeof(Leaf);
+  const bool blocks_in_tree = block_bytes <= tree.bytes();
+  if (!blocks_in_tree) leaves_ = RawArray<Leaf>(blocks);  // each block is written in full below
   constexpr std::int64_t kBlocksPerTask = 1024;
   // Sum of the faces' longest edges per task of kBlocksPerTask blocks (each summed in leaf order
   // by the thread that fills it), so the packet extent does not depend on the thread count.
   std::vector<double> task_size(
       static_cast<std::size_t>((leaf_count + kBlocksPerTask - 1) / kBlocksPerTask));
   double corner_error2 = 0.0;  // square roots are taken once, of the maxima
-  // While one thread collapses, the others touch the leaf blocks' pages in order, one byte per
-  // page (raw storage: the blocks' fill writes every byte later), so a build on pages the process
-  // does not hold yet takes their faults on threads that would wait. The process's first torus1m
-  // build in peer_compare (2 threads, alternating processes; the same 16,010 faults): means
-  // 0.1156 -> 0.1025 s and 0.1013 -> 0.0932 s in two series of 12, where faults were slow; 0.0870
-  // -> 0.0860 s in 16 where they were not (docs/performance-log.md §3).
+  // While one thread collapses, the others touch the pages the blocks will fill and nothing has
+  // written yet, in order, one byte per page (raw storage: the blocks' fill writes every byte
+  // later), so that a build on pages the process does not hold yet takes their faults on threads
+  // that would wait: the blocks' own storage, or the tree's beyond its written prefix, which the
+  // collapse does not read. (With the blocks in storage of their own throughout, the process's
+  // first torus1m build in peer_compare, 2 threads, alternating processes, the same 16,010
+  // faults: means 0.1156 -> 0.1025 s and 0.1013 -> 0.0932 s in two series of 12, where faults
+  // were slow; 0.0870 -> 0.0860 s in 16 where they were not; docs/performance-log.md §3.)
+  constexpr std::size_t kPage = 4096, kPagesPerStep = 16;
+  char* const fill_base =
+      reinterpret_cast<char*>(blocks_in_tree ? static_cast<void*>(tree.data()) : leaves_.data());
+  const std::size_t untouched_from = blocks_in_tree ? written_nodes * sizeof(BinaryNode) : 0;
+  // Page-aligned addresses in [fill_base + untouched_from, fill_base + block_bytes).
+  const std::uintptr_t touch_first =
+      (reinterpret_cast<std::uintptr_t>(fill_base) + untouched_from + kPage - 1) / kPage * kPage;
+  const std::uintptr_t touch_end = reinterpret_cast<std::uintptr_t>(fill_base) + block_bytes;
+  const std::size_t pages =
+      touch_first < touch_end ? (touch_end - touch_first + kPage - 1) / kPage : 0;
   std::atomic<bool> collapsed{false};
   std::atomic<std::size_t> next_page{0};
-  constexpr std::size_t kPage = 4096, kPagesPerStep = 16;
 #pragma omp parallel num_threads(team)
   {
 #pragma omp single nowait
@@ -893,15 +931,15 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
       root_ = collapse(collapse, 0, 1);
       collapsed.store(true, std::memory_order_release);
     }
-    char* const bytes = reinterpret_cast<char*>(leaves_.data());
-    const std::size_t pages = (blocks * sizeof(Leaf) + kPage - 1) / kPage;
     while (!collapsed.load(std::memory_order_acquire)) {
       const std::size_t first_page = next_page.fetch_add(kPagesPerStep);
       if (first_page >= pages) break;
       for (std::size_t p = first_page; p < std::min(first_page + kPagesPerStep, pages); ++p)
-        bytes[p * kPage] = 0;
+        reinterpret_cast<char*>(touch_first)[p * kPage] = 0;
     }
 #pragma omp barrier
+#pragma omp single
+    if (blocks_in_tree) leaves_ = RawArray<Leaf>(std::move(tree), blocks);
     double task_sum = 0.0;  // this thread's task so far
 #pragma omp for schedule(dynamic, kBlocksPerTask) reduction(max : corner_error2)
     for (std::int64_t l = 0; l < leaf_count; ++l) {

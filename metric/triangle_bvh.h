@@ -195,7 +195,8 @@ class TriangleBvh final : public NearestPointIndex {
   double full_packet_extent_ = 0;  // the same for packets of at least kFullPacket queries
   std::uint32_t root_ = 0;         // child ref of the root
   std::vector<Node> nodes_;
-  std::vector<Leaf, RawStorageAllocator<Leaf>> leaves_;  // every field written by build()
+  // Every field written by build(), mostly in the storage of its spent binary tree (build()).
+  RawArray<Leaf> leaves_;
   int depth_ = 0;
   bool morton_splits_ = false;
 };
