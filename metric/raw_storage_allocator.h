@@ -6,9 +6,10 @@
 // arguments does nothing, so `resize` leaves the new elements as raw storage instead of
 // initialising them on the calling thread. For arrays whose every element is written afterwards
 // by the threads that own it (face samples, placed with placement new; the deviations'
-// per-sample arrays). RawArray (below): the same for a plain owned array of a trivial type.
-// push_back, insert and copies construct as usual. Nothing may read an element that `resize` added
-// before it is written.
+// per-sample arrays). push_back, insert and copies construct as usual. Nothing may read an
+// element that `resize` added before it is written.
+//
+// RawArray (below): the same contract for a plain owned array of a trivial type.
 //
 // Checked in the sanitizer builds (scripts/sanitize.sh): there every block is filled with
 // all-ones bytes when allocated (NaN doubles and floats, 0xffffffff integers), so an element
