@@ -74,24 +74,24 @@ class RawArray {
  public:
   RawArray() = default;
   // `count` unwritten elements. Throws std::bad_alloc. O(1) (O(count) in the sanitizer builds).
-  explicit RawArray(std::size_t count) : size_(count), bytes_(count * sizeof(T)) {
+  explicit RawArray(std::size_t count) : size_(count) {
     if (count > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_alloc();
-    data_ = static_cast<T*>(std::malloc(bytes_ == 0 ? 1 : bytes_));
+    data_ = static_cast<T*>(std::malloc(count == 0 ? 1 : count * sizeof(T)));
     if (data_ == nullptr) throw std::bad_alloc();
     poison();
   }
   // `count` unwritten elements in `from`'s storage, which is cut to their bytes (std::realloc:
   // glibc shrinks in place, keeping the pages already touched and releasing the rest of an
-  // mmapped block); `from` is left empty. Precondition: count * sizeof(T) <= from.bytes().
-  // O(1) (O(count) in the sanitizer builds).
+  // mmapped block; where a shrink fails, the block stays as it was); `from` is left empty.
+  // Precondition: count * sizeof(T) <= from.size() * sizeof(U). O(1) (O(count) in the sanitizer
+  // builds).
   template <class U>
-  RawArray(RawArray<U>&& from, std::size_t count) : size_(count), bytes_(count * sizeof(T)) {
-    assert(bytes_ <= from.bytes_);
-    void* const shrunk = std::realloc(from.data_, bytes_ == 0 ? 1 : bytes_);
+  RawArray(RawArray<U>&& from, std::size_t count) : size_(count) {
+    assert(count * sizeof(T) <= from.size_ * sizeof(U));
+    void* const shrunk = std::realloc(from.data_, count == 0 ? 1 : count * sizeof(T));
     data_ = static_cast<T*>(shrunk != nullptr ? shrunk : static_cast<void*>(from.data_));
-    if (shrunk == nullptr) bytes_ = from.bytes_;  // (a failed shrink leaves the block as it was)
     from.data_ = nullptr;
-    from.size_ = from.bytes_ = 0;
+    from.size_ = 0;
     poison();
   }
   RawArray(RawArray&& other) noexcept { swap(other); }
@@ -106,7 +106,6 @@ class RawArray {
   T* data() { return data_; }
   const T* data() const { return data_; }
   std::size_t size() const { return size_; }
-  std::size_t bytes() const { return bytes_; }  // of the storage held (at least size() elements)
   T& operator[](std::size_t i) {
     assert(i < size_);
     return data_[i];
@@ -122,7 +121,6 @@ class RawArray {
   void swap(RawArray& other) noexcept {
     std::swap(data_, other.data_);
     std::swap(size_, other.size_);
-    std::swap(bytes_, other.bytes_);
   }
   void poison() {
 #ifdef MESHDEV_POISON_RAW_STORAGE
@@ -132,7 +130,6 @@ class RawArray {
 
   T* data_ = nullptr;
   std::size_t size_ = 0;
-  std::size_t bytes_ = 0;
 };
 
 }  // namespace meshdev

@@ -515,8 +515,9 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   // 81 ms on 2 threads instead of 60) and the collapse read twice the lines. The ids handed out
   // are dense (a thread's last run at most unused), so the tree's written memory is one prefix of
   // its storage, which the leaf blocks then take over (below); before, each such subtree took 2c
-  // ids at once for its c faces and wrote about a quarter of them. The tree's shape does not
-  // depend on the thread count: each split depends only on its own range of faces.
+  // ids at once for its c faces and wrote about c / 2 of them (2 blocks - 1 nodes, blocks
+  // of 3.7-3.9 faces). The tree's shape does not depend on the thread count: each split depends
+  // only on its own range of faces.
   constexpr std::uint32_t kCursorIds = 4096;  // 128 KB of nodes
   struct alignas(64) Cursor {                 // a thread's own line: no false sharing
     std::uint32_t next = 0, end = 0;          // its run of ids
@@ -832,7 +833,8 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
 
   // Collapse into 4-wide nodes (recursive: the binary depth is bounded) by the plans the splits
   // made (metric/wide_collapse.h: the least summed half area of the wide nodes), on one thread
-  // (the others touch the leaf blocks' pages meanwhile, below), then the leaf blocks on the whole
+  // (the others touch the pages the leaf blocks will fill that nothing has written yet, below),
+  // then the leaf blocks on the whole
   // team. Beside the leaf blocks, which read their corners by loads since the forty-fifth
   // session, the collapse took 11.5 ms instead of 5.0 (torus1m, 2 threads; the two phases 14.5
   // ms against 11.7): builds 1.061 faster on torus1m, 1.27 on buildings.ply (medians of 30
@@ -887,8 +889,10 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   const auto leaf_count = static_cast<std::int64_t>(blocks);
   // The blocks go into the binary tree's storage once the collapse has read it (where they fit:
   // 176 bytes a block against 32 a node and at least 2n nodes, so wherever the blocks hold 2.75
-  // faces or more on average, as the small subtrees' splits into full blocks of 4 make them),
-  // else into storage of their own. The tree's written prefix (about 16 bytes a face) is then
+  // faces or more on average, as the small subtrees' splits into full blocks of 4 make them: 3.7
+  // to 3.9 on the meshes of docs/performance-log.md §3, forty-eighth session), else into storage
+  // of their own. The tree's written prefix (2 blocks - 1 nodes of 32 bytes: 16.8 bytes a face
+  // on torus1m) is then
   // already the process's memory, and the blocks take no page faults there, nor does the process
   // hold both at once: torus1m's first build in peer_compare 16,009 -> 11,855 page faults, the
   // process's peak 364 -> 331 MiB; `meshdev compare torus100k.ply torus1m.ply` (1M Monte Carlo
@@ -896,7 +900,7 @@ void TriangleBvh::build(int threads, detail::FaceRecords& records) {
   // the builds' time the same within this host's noise (first builds old / new 1.002 over 8
   // alternating pairs of processes; docs/performance-log.md §3, forty-eighth session).
   const std::size_t block_bytes = blocks * sizeof(Leaf);
-  const bool blocks_in_tree = block_bytes <= tree.bytes();
+  const bool blocks_in_tree = block_bytes <= tree.size() * sizeof(BinaryNode);
   if (!blocks_in_tree) leaves_ = RawArray<Leaf>(blocks);  // each block is written in full below
   constexpr std::int64_t kBlocksPerTask = 1024;
   // Sum of the faces' longest edges per task of kBlocksPerTask blocks (each summed in leaf order
