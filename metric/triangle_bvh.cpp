@@ -1492,6 +1492,23 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     __builtin_prefetch(leaf + 64);
     __builtin_prefetch(leaf + 128);
   }
+  // Sparse packets: the blocks query k bounds, as indices into the packet's blocks (which[k],
+  // selected[k] of them; + 8: the selection writes four or eight entries per group of blocks,
+  // past the last it keeps). From the blocks' boxes, which the tree walk wrote.
+  static_assert(kMaxBlocks <= 255, "a query's blocks and their indices fit in a byte");
+  std::uint8_t which[kPacketSize][kMaxBlocks + 8];
+  std::uint8_t selected[kPacketSize];
+  const float* const block_lo[3] = {scratch.block_lo[0], scratch.block_lo[1], scratch.block_lo[2]};
+  const float* const block_hi[3] = {scratch.block_hi[0], scratch.block_hi[1], scratch.block_hi[2]};
+  auto select_blocks = [&](std::size_t k) {
+    const float limit2 = round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5));
+#if defined(MESHDEV_X86_KERNELS)
+    if (avx_gather_)
+      return detail::blocks_near_point_avx2(block_lo, block_hi, blocks, scratch.qf[k], limit2,
+                                            which[k]);
+#endif
+    return detail::blocks_near_point(block_lo, block_hi, blocks, scratch.qf[k], limit2, which[k]);
+  };
 
   // Two layouts of the candidates' planes (metric/plane_bounds.h), from the cache (consecutive
   // packets share most of their blocks). Dense packets, at least kDenseQueries queries per
@@ -1499,7 +1516,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // laid out once as rows of `stride` floats, and every query bounds all of them (`bounds`).
   // Sparse packets: each block's planes as they are (a copy: two blocks of a packet may share a
   // cache slot), and each query bounds the faces of only the blocks within its own reach
-  // (`block_bounds`). Either way the bound of candidate idx is bound[idx], and face_at(idx) its
+  // (`block_bounds`). Either way the bound of candidate idx is bound[idx], and face_at(k, idx) its
   // face.
   const bool dense = n >= kDenseQueries * blocks;
   scratch.sparse = !dense;
@@ -1552,6 +1569,15 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     for (int r = 0; r < kPlaneRows; ++r)  // padding lanes: bound +inf
       std::fill(rows + r * stride + candidates, rows + (r + 1) * stride, r == kD ? -kInf : 0.0f);
   } else {
+    // Every query's selection first, then the planes: the selection reads only the blocks'
+    // boxes, so the blocks' lines prefetched above arrive while it runs, where the planes of the
+    // blocks met for the first time (about 5.6 of a packet's 17 on torus100k -> 1m) waited for
+    // them; and the third pass below reuses it instead of selecting again. `peer_compare A B
+    // 1000000 --ab 12`, 1 / 2 threads: torus100k -> 1m 1.037 / 1.040 (1.029 / 1.028 with the
+    // third pass still selecting again), torus100k -> torus1m_shuffled 1.035 / 1.031 (--ab 8),
+    // the other six pairs 0.986-1.013 (docs/performance-log.md §3, forty-ninth session).
+    for (std::size_t k = 0; k < n; ++k)
+      if (k != c) selected[k] = static_cast<std::uint8_t>(select_blocks(k));
     const CachedPlanes* cached[kMaxBlocks];
     for (std::size_t b = 0; b < blocks; ++b) {
       const Leaf& leaf = leaves_[scratch.block[b]];
@@ -1572,13 +1598,10 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     }
     for (std::size_t b = blocks; b < padded; ++b) scratch.block_rows[b] = nullptr;
   }
-  // Sparse packets: the blocks a query bounds, as indices into the packet's blocks (+ 8: the
-  // selection writes four or eight entries per group of blocks, past the last it keeps).
-  static_assert(kMaxBlocks <= 256, "block indices of a packet fit in a byte");
-  std::uint8_t which[kMaxBlocks + 8];
-  auto face_at = [&](std::size_t idx) {
+  // Candidate idx's face for query k.
+  auto face_at = [&](std::size_t k, std::size_t idx) {
     return dense ? leaves_[scratch.slots[idx] >> 2].face[scratch.slots[idx] & 3]
-                 : leaves_[scratch.block[which[idx >> 2]]].face[idx & 3];
+                 : leaves_[scratch.block[which[k][idx >> 2]]].face[idx & 3];
   };
   // The candidates' faces in the mesh (above) and their corners' positions (the exact tests read
   // them, in double), prefetched: otherwise a face's first exact test in the packet waited for
@@ -1595,7 +1618,16 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     for (int corner = 0; corner < 3; ++corner) __builtin_prefetch(&mesh.positions[t[corner]]);
   };
   if (dense)
-    for (std::size_t idx = 0; idx < candidates; ++idx) prefetch_corners(face_at(idx));
+    for (std::size_t idx = 0; idx < candidates; ++idx) prefetch_corners(face_at(0, idx));
+
+  // Query k's bounds into scratch.bound (count: the selected blocks' lanes), the smallest and the
+  // runner-up (NaN bounds become 0: evaluated first, never culled).
+  auto bounds_of = [&](std::size_t k, std::size_t count) {
+    return dense ? kernels_->bounds(scratch.rows.data(), stride, candidates, scratch.qf[k],
+                                    scratch.bound)
+                 : kernels_->block_bounds(scratch.block_rows, which[k], count / 4, scratch.qf[k],
+                                          scratch.bound);
+  };
 
   // Each query: float lower bounds sqrt(h^2 + max(out_e, 0)^2) of its candidates, then the
   // survivors evaluated exactly, smallest bound first, until the bound passes the tie limit.
@@ -1607,29 +1639,11 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
   // blocks it selects) give its candidate of smallest bound and the runner-up; then those first
   // candidates are tested exactly, four queries at a time (FaceEvaluator::evaluate_x4: AVX2 lanes
   // where the closest point lies in the face's interior, as it mostly does); then each query
-  // ends as before. Its selection and bounds are computed again, the same, for the few queries
-  // whose runner-up lies within the cutoff. Against the exact test query by query
-  // (chunk-interleaved, 1 and 2 threads: torus100k -> 1m +6-10 %, torus1m -> 100k +17 %,
-  // torus100k -> 10k +10-16 %, armadillo +11 %, buildings +3-8 %; docs/performance-log.md §3).
-  const float* const block_lo[3] = {scratch.block_lo[0], scratch.block_lo[1], scratch.block_lo[2]};
-  const float* const block_hi[3] = {scratch.block_hi[0], scratch.block_hi[1], scratch.block_hi[2]};
-  auto select_blocks = [&](std::size_t k) -> std::size_t {
-    const float limit2 = round_up_to_float(initial_reach[k] * initial_reach[k] * (1.0 + 1e-5));
-#if defined(MESHDEV_X86_KERNELS)
-    if (avx_gather_)
-      return detail::blocks_near_point_avx2(block_lo, block_hi, blocks, scratch.qf[k], limit2,
-                                            which);
-#endif
-    return detail::blocks_near_point(block_lo, block_hi, blocks, scratch.qf[k], limit2, which);
-  };
-  // Query k's bounds into scratch.bound (count: the selected blocks' lanes), the smallest and the
-  // runner-up (NaN bounds become 0: evaluated first, never culled).
-  auto bounds_of = [&](std::size_t k, std::size_t count) {
-    return dense ? kernels_->bounds(scratch.rows.data(), stride, candidates, scratch.qf[k],
-                                    scratch.bound)
-                 : kernels_->block_bounds(scratch.block_rows, which, count / 4, scratch.qf[k],
-                                          scratch.bound);
-  };
+  // ends as before. Its bounds are computed again, the same, for the few queries whose runner-up
+  // lies within the cutoff (sparse packets: over its selection, kept). Against the exact test
+  // query by query (chunk-interleaved, 1 and 2 threads: torus100k -> 1m +6-10 %, torus1m -> 100k
+  // +17 %, torus100k -> 10k +10-16 %, armadillo +11 %, buildings +3-8 %; docs/performance-log.md
+  // §3).
   enum : std::uint8_t { kCentre, kInFull, kTested };
   std::uint8_t status[kPacketSize];
   std::uint32_t first_face[kPacketSize], first_idx[kPacketSize], counted[kPacketSize];
@@ -1643,15 +1657,14 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     }
     std::size_t count = candidates;
     if (!dense) {
-      const std::size_t selected = select_blocks(k);
-      if (selected == 0) {  // none within the guessed reach
+      if (selected[k] == 0) {  // none within the guessed reach
         status[k] = kInFull;
         continue;
       }
-      count = 4 * selected;
+      count = 4 * std::size_t{selected[k]};
     }
     const LeastBounds least = bounds_of(k, count);
-    first_face[k] = face_at(least.first);
+    first_face[k] = face_at(k, least.first);
     if (first_face[k] == kNoFace) {  // every bound +inf (only empty lanes)
       status[k] = kInFull;
       continue;
@@ -1710,7 +1723,6 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     // +1.5-2.2 %, armadillo +0.9-1.3 %, buildings -0.6 to +0.1 %; docs/performance-log.md §3).
     std::size_t left = 0;
     if (!(runner_up[k] > cutoff)) {
-      if (!dense) select_blocks(k);
       bounds_of(k, counted[k]);
       left =
           kernels_->survivors(scratch.bound, counted[k], cutoff, first_idx[k], scratch.survivors);
@@ -1738,7 +1750,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
       const std::uint32_t idx = scratch.survivors[pick];
       if (scratch.bound[idx] > cutoff) break;
       scratch.survivors[pick] = scratch.survivors[--left];
-      const std::uint32_t face = face_at(idx);
+      const std::uint32_t face = face_at(k, idx);
       if (face == kNoFace) continue;  // an empty lane (bound +inf) under a cutoff of +inf
       const SurfaceHit h = eval_.evaluate(p, face, hint);
       if (h.sq_distance > limit_sq) continue;
