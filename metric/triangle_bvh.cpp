@@ -1598,7 +1598,7 @@ std::size_t TriangleBvh::find_packet(const Vec3* points, const QueryHint* hints,
     }
     for (std::size_t b = blocks; b < padded; ++b) scratch.block_rows[b] = nullptr;
   }
-  // Candidate idx's face for query k.
+  // Candidate idx's face for query k (a dense packet's candidates are every query's: any k).
   auto face_at = [&](std::size_t k, std::size_t idx) {
     return dense ? leaves_[scratch.slots[idx] >> 2].face[scratch.slots[idx] & 3]
                  : leaves_[scratch.block[which[k][idx >> 2]]].face[idx & 3];
