@@ -457,6 +457,10 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   // is probed on pairs of consecutive samples: in a coherent order fewer than an eighth of them
   // lie in different cells of the 4 x 4 x 4 grid over the box (0-13 % on the test meshes), in a
   // shuffled one most do (64-85 %); a third is the threshold (a wrong guess costs speed only).
+  // Pairs every 64 samples, at most 4096 of them (evenly spread): each pair is a cache miss, and
+  // the 15,600 pairs of 1M samples took 0.5 ms, serial, ahead of the team's work (1 % of
+  // torus100k -> 10k's 2-thread run); capped, 0.2-1.1 % faster on the dense pairs
+  // (docs/performance-log.md §3). 4096 pairs give the fraction to 1 % (a standard error).
   // Only where samples are dense on B (at least kDense per face), where packets form and the
   // order pays: elsewhere queries go one by one and reading the samples and writing their
   // results out of order cost more (torus100k -> 1m: -7 %). `visit[k]` is the k-th sample
@@ -464,10 +468,11 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
   std::vector<std::uint32_t> visit;
   const MortonGrid grid(sample_box);
   auto probe_incoherent = [&] {
-    constexpr std::size_t kProbe = 64;
+    constexpr std::size_t kProbe = 64, kMaxPairs = 4096;
     constexpr int kCoarseShift = 3 * (MortonGrid::kBucketLevels - 2);  // 4 x 4 x 4 cells
     std::size_t pairs = 0, apart = 0;
-    for (std::size_t i = kProbe; i < n; i += kProbe, ++pairs)
+    const std::size_t step = std::max(kProbe, n / kMaxPairs);
+    for (std::size_t i = step; i < n; i += step, ++pairs)
       apart += grid.bucket(samples.at(i).point) >> kCoarseShift !=
                grid.bucket(samples.at(i - 1).point) >> kCoarseShift;
     return 3 * apart > pairs;
