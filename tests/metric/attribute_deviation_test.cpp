@@ -243,7 +243,7 @@ TEST(AttributeDeviation, DeviationsBeyondTheMemoryAreRefusedBeforeAnyQuery) {
   const AttributePlan plan = plan_attributes(a, b, {}, "A", "B");
   const double needed = std::ldexp(1.0, 31) * deviation_bytes_per_sample(plan.measures, {});
   EXPECT_EQ(deviation_bytes_per_sample(plan.measures, {}),
-            plan.measures.size() * sizeof(double) + 5.0 + sizeof(SurfaceHit));
+            static_cast<double>(plan.measures.size() * sizeof(double)) + 5.0 + sizeof(SurfaceHit));
   if (fits_in_memory(needed))
     GTEST_SKIP() << "this machine has room for the deviations of 2^31 samples";
   SamplingOptions so;
