@@ -553,6 +553,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     {
       if (options.keep_nearest) out.nearest.resize(n);
       schedule = std::make_unique<ChunkSchedule>(chunks, omp_get_num_threads());
+      out.samples_per_thread.assign(static_cast<std::size_t>(omp_get_num_threads()), 0);
     }
     BatchHits batch;
     std::vector<Vec3> points;
@@ -567,6 +568,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
     double form_a[3][16], form_b[3][16];  // ... normalised or in CIELAB
     const double *at_a[3], *at_b[3];      // each form's values
     const int thread = omp_get_thread_num();
+    std::size_t answered = 0;  // this thread's samples, for out.samples_per_thread
     for (std::int64_t chunk; (chunk = schedule->next(thread)) >= 0;) {
       // The chunk's nearest points in one batch, in Morton order of the samples' positions
       // (on a grid over A's box, so a set sorted on that grid is left as it is): consecutive
@@ -575,6 +577,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
       // changes only the speed.
       const std::size_t begin = static_cast<std::size_t>(chunk) * kChunk;
       const std::size_t count = std::min(n, begin + kChunk) - begin;
+      answered += count;
       points.resize(count);
       hints.resize(count);
       const ChunkSamples chunk_samples = chunk_of(begin, count, scratch);
@@ -727,6 +730,7 @@ SampleDeviations deviations_of(const Samples& samples, const PreparedMesh& refer
         from = to;
       }
     }
+    out.samples_per_thread[static_cast<std::size_t>(thread)] = answered;
   }
   for (std::size_t i = 0; i < out.cohen_case.size(); ++i) {
     out.cohen_multiple += out.cohen_case[i] == static_cast<std::uint8_t>(CohenCase::kMultiple);

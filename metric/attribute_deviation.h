@@ -46,6 +46,11 @@ struct SampleDeviations {
   // whose own order was not spatially coherent, e.g. shuffled) rather than in chunks of their own
   // order. Speed only; the samplers' sets come along a curve and never need it.
   bool cell_order = false;
+  // The samples each thread of the team answered (one entry per thread). The threads share the
+  // chunks until none is left, so the split follows their speeds: about even where the cores run
+  // at one speed, uneven where one ran slower (a core shared with another program or guest).
+  // Diagnostics only; the results do not depend on it.
+  std::vector<std::size_t> samples_per_thread;
   // Only when Cohen's texture deviation is measured (see metric/texture_deviation.h):
   std::vector<std::uint8_t> cohen_case;  // per sample: a CohenCase
   std::size_t cohen_multiple = 0;        // samples whose UV lies at several distinct points of B

@@ -47,7 +47,9 @@
 // --rounds-csv FILE: each round's throughputs and ratios are also appended to FILE as CSV, one
 // row per (round, thread count), for bench/peers/table_md.py's table of the rounds' medians;
 // `start_s` is when the row's meshdev run began, in seconds after the first round's, and
-// `probe_s` the seconds of the host probe just before it.
+// `probe_s` the seconds of the host probe just before it, and `thread_split` how unevenly the
+// threads of meshdev's run shared its samples (thread_split below): near 1 where both cores ran
+// at one speed through the run, well above where one of them was slowed during it.
 // --ab R: instead of the above, meshdev alone, variant 0 against variant 1 of an experiment
 // (metric/ab_variant.h): the samples are cut into chunks of C (65536), each chunk is answered by
 // both variants in turn, which goes first alternating from chunk to chunk and round to round, and
@@ -173,6 +175,19 @@ double pipes_probe(int threads) {
   const double seconds = seconds_since(t0);
   g_probe_sink = g_probe_sink + sum;
   return seconds;
+}
+
+// How unevenly a meshdev run's team shared its samples: the most any thread answered over the
+// fewest (SampleDeviations::samples_per_thread). The threads take chunks until none is left, so
+// this is the ratio of their speeds over the run: 1.01-1.06 in undisturbed 2-thread runs here
+// (torus100k -> 10k, about 490 chunks each), 1.39 in one whose rate fell by a fifth without any
+// pause in either thread (docs/performance-log.md §3, fifty-first session). 1 for one thread.
+double thread_split(const meshdev::SampleDeviations& d) {
+  if (d.samples_per_thread.empty()) return 1.0;
+  const auto [lo, hi] =
+      std::minmax_element(d.samples_per_thread.begin(), d.samples_per_thread.end());
+  return *lo == 0 ? std::numeric_limits<double>::infinity()
+                  : static_cast<double>(*hi) / static_cast<double>(*lo);
 }
 
 template <class F>
@@ -1197,7 +1212,7 @@ int main(int argc, char** argv) {
     const std::size_t counts = opt.threads.size();
     // [thread count's position in opt.threads][round]
     std::vector<std::vector<double>> over(counts), over_hint(counts), meshdev_wall(counts),
-        probe(counts);
+        probe(counts), splits(counts);
     const Clock::time_point rounds_start = Clock::now();
     for (int r = 0; r < opt.rounds; ++r) {
       for (std::size_t step = 0; step < counts; ++step) {
@@ -1205,24 +1220,27 @@ int main(int argc, char** argv) {
         const int th = opt.threads[t];
         const double probe_s = pipes_probe(th);
         const double start_s = std::chrono::duration<double>(Clock::now() - rounds_start).count();
-        const Timing m = time_best(1, th, [&] { meshdev_queries(*index, th); });
+        double split = 1.0;
+        const Timing m =
+            time_best(1, th, [&] { split = thread_split(meshdev_queries(*index, th)); });
         const Timing e = time_best(1, th, [&] { embree_run(arrays, scene.scene, false, th, out); });
         Timing h{std::numeric_limits<double>::quiet_NaN(), 0};
         if (opt.embree_hint)
           h = time_best(1, th, [&] { embree_run(arrays, scene.scene, true, th, out); });
         meshdev_wall[t].push_back(m.wall);
         probe[t].push_back(probe_s);
+        splits[t].push_back(split);
         over[t].push_back(e.wall / m.wall);
         if (opt.embree_hint) over_hint[t].push_back(h.wall / m.wall);
         std::printf("%3d %5d %10.3f %10.3f %10.3f %12.2f %12.2f\n", th, r + 1, qps(m), qps(e),
                     qps(h), e.wall / m.wall, h.wall / m.wall);
         char line[512];
         std::snprintf(line, sizeof line,
-                      "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s,%.3f,%.5f\n",
+                      "%s,%s,%s,%zu,%zu,%zu,%s,%d,%d,%.1f,%.1f,%.1f,%.4f,%.4f,%s,%.3f,%.5f,%.3f\n",
                       label.c_str(), basename(opt.a).c_str(), basename(opt.b).c_str(),
                       a.num_faces(), b.num_faces(), n, opt.order.c_str(), th, r + 1, qps(m) * 1e6,
                       qps(e) * 1e6, qps(h) * 1e6, e.wall / m.wall, h.wall / m.wall,
-                      load_start.substr(0, load_start.find(' ')).c_str(), start_s, probe_s);
+                      load_start.substr(0, load_start.find(' ')).c_str(), start_s, probe_s, split);
         rounds_csv << line;
       }
     }
@@ -1247,6 +1265,9 @@ int main(int argc, char** argv) {
           host.push_back(probe[0][r] / probe[t][r]);
         const auto [lo_p, hi_p] = std::minmax_element(host.begin(), host.end());
         std::printf(", the host's probe %.2f (range %.2f-%.2f)", median_of(host), *lo_p, *hi_p);
+        const auto [lo_t, hi_t] = std::minmax_element(splits[t].begin(), splits[t].end());
+        std::printf(", meshdev's thread split %.2f (range %.2f-%.2f)", median_of(splits[t]), *lo_t,
+                    *hi_t);
       }
       std::printf(" over %d rounds\n", opt.rounds);
     }
@@ -1278,7 +1299,8 @@ int main(int argc, char** argv) {
   // Embree+hint's columns are nan without --embree-hint.
   const char* rounds_header =
       "label,a,b,a_faces,b_faces,samples,order,threads,round,meshdev_qps,embree_qps,"
-      "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start,start_s,probe_s\n";
+      "embree_hint_qps,meshdev_over_embree,meshdev_over_embree_hint,load_start,start_s,probe_s,"
+      "thread_split\n";
   if (!opt.rounds_csv.empty())
     written = append_csv(opt.rounds_csv, rounds_header, rounds_csv.str()) && written;
   if (!agreed)

@@ -120,6 +120,11 @@ def host_rounds(rows, label):
 # 1.03-1.89x).
 kFullHost = 1.9
 
+# A 2-thread run whose threads answered samples in a ratio of at least this (peer_compare's
+# thread_split) had one core slower than the other through it: undisturbed runs split 1.00-1.06
+# (docs/performance-log.md §3, fifty-first session).
+kUneven = 1.1
+
 
 def rounds(runs):
     """runs: [(rounds rows, peers rows or None)], one per run."""
@@ -272,6 +277,18 @@ def targets(rounds_path, peers_path, log_path, meshlab_paths):
         if full:
             how += (f"; meshdev in the {len(full)} rounds at {kFullHost}× or more: median "
                     f"{med(full):.2f}×, {sum(x < 1.8 for x in full)} below 1.8×")
+        # And how its two threads shared the samples of the rounds below 1.8× (files with a
+        # thread_split column, since the fifty-first session): a split of kUneven or more says one
+        # core ran slower than the other during that very run.
+        slow = []
+        if rows and "thread_split" in rows[0]:
+            for label in labels_of(rows):
+                q = by_round(rows, label, "meshdev_qps")
+                split = by_round(rows, label, "thread_split")["2"]
+                slow += [split[k] for k in q["2"] if k in q["1"] and q["2"][k] / q["1"][k] < 1.8]
+        if slow:
+            how += (f"; of the {len(slow)} rounds below 1.8×, {sum(x >= kUneven for x in slow)} "
+                    f"with one thread answering {kUneven}× the other's samples or more")
         print(f"| 2-thread speed-up ≥ 1.8× | {min(speedups)[0]:.2f}–{max(speedups)[0]:.2f}× on "
               f"{len(speedups)} pairs ({how}) | " + (verdict(True) if not below else
                                               f"met on {met} of {len(speedups)}; below: "

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <string>
 
@@ -65,6 +66,12 @@ TEST(AttributeDeviation, EqualsThePerTieMinimumOfAttributeDistanceOverTheBruteFo
       const SampleDeviations d =
           compute_deviations(samples, plan.a, plan.b, *bvh, plan.measures, options);
       EXPECT_EQ(d.cell_order, shuffle);
+      // The team (of at most the 2 threads asked for) answered every sample once between them.
+      ASSERT_FALSE(d.samples_per_thread.empty());
+      EXPECT_LE(d.samples_per_thread.size(), 2u);
+      EXPECT_EQ(
+          std::accumulate(d.samples_per_thread.begin(), d.samples_per_thread.end(), std::size_t{0}),
+          samples.samples.size());
 
       std::vector<SurfaceHit> ties;
       std::size_t with_ties = 0, tie_changed_value = 0;
@@ -207,6 +214,10 @@ TEST(AttributeDeviation, SamplesMadeAsTheyAreQueriedGiveTheStoredSetsResults) {
         EXPECT_TRUE(x.values[m] == y.values[m]) << plan.measures[m].name;
       EXPECT_TRUE(x.tie_count == y.tie_count);
       EXPECT_TRUE(x.nearest_feature == y.nearest_feature);
+      for (const SampleDeviations* d : {&x, &y})
+        EXPECT_EQ(std::accumulate(d->samples_per_thread.begin(), d->samples_per_thread.end(),
+                                  std::size_t{0}),
+                  d->values[0].size());
       ASSERT_EQ(x.nearest.size(), y.nearest.size());
       for (std::size_t i = 0; i < x.nearest.size(); ++i) {
         ASSERT_EQ(x.nearest[i].face, y.nearest[i].face) << "sample " << i;
