@@ -287,8 +287,9 @@ def targets(rounds_path, peers_path, log_path, meshlab_paths):
                 split = by_round(rows, label, "thread_split")["2"]
                 slow += [split[k] for k in q["2"] if k in q["1"] and q["2"][k] / q["1"][k] < 1.8]
         if slow:
-            how += (f"; of the {len(slow)} rounds below 1.8×, {sum(x >= kUneven for x in slow)} "
-                    f"with one thread answering {kUneven}× the other's samples or more")
+            uneven = sum(x >= kUneven for x in slow)
+            how += (f"; rounds below 1.8×: {len(slow)}, of which {uneven} had one thread "
+                    f"answer {kUneven}× the other's samples or more")
         print(f"| 2-thread speed-up ≥ 1.8× | {min(speedups)[0]:.2f}–{max(speedups)[0]:.2f}× on "
               f"{len(speedups)} pairs ({how}) | " + (verdict(True) if not below else
                                               f"met on {met} of {len(speedups)}; below: "
