@@ -136,10 +136,10 @@ def rounds(runs):
     pairs = labels_of([r for rows, _ in runs for r in rows])
     print("| pair | meshdev M/s, 1 / 2 threads | ÷ Embree, 1 thread | ÷ Embree, 2 threads "
           "| ÷ Embree+hint, 2 threads | 2-thread speed-up (best-of; rounds) "
-          "| the host probe's 2-thread speed-up |")
-    print("|---|---:|---:|---:|---:|---:|---:|")
+          "| the host probe's 2-thread speed-up | meshdev's thread split, 2 threads |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
     for label in pairs:
-        cells = [[], [], [], [], [], []]
+        cells = [[], [], [], [], [], [], []]
         for rows, best in runs:
             by = {t: [r for r in rows if r["label"] == label and r["threads"] == t]
                   for t in ("1", "2")}
@@ -163,12 +163,17 @@ def rounds(runs):
             cells[4].append(speedup)
             host = list(host_rounds(rows, label).values())
             cells[5].append(span(host) if host else "–")
+            split = [float(r["thread_split"]) for r in by["2"] if r.get("thread_split")]
+            cells[6].append(span(split) if split else "–")
         print(f"| {pair_name(label)} | " + " | ".join(" · ".join(c) for c in cells) + " |")
     print("\nMedians over each run's rounds (range); runs separated by \" · \". The rounds' "
           "speed-up: the median of each round's 2-thread over 1-thread throughput where the "
           "round ran both (files with `start_s`), else the ratio of the two medians. The host "
           "probe (files with `probe_s`): 16 chains of multiply-adds timed before each meshdev "
-          "run, its 1-thread over 2-thread time in each round (2: two physical cores).\n")
+          "run, its 1-thread over 2-thread time in each round (2: two physical cores). The "
+          "thread split (files with `thread_split`, since the fifty-first session): in each "
+          "2-thread meshdev run, the samples one thread answered over the other's (1: both "
+          "cores at one speed through the run).\n")
 
 
 def build_lines(log_path, pair):
