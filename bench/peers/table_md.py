@@ -122,7 +122,7 @@ kFullHost = 1.9
 
 # A 2-thread run whose threads answered samples in a ratio of at least this (peer_compare's
 # thread_split) had one core slower than the other through it: the fifty-first session's
-# undisturbed runs split 1.00-1.09, their medians per pair 1.01-1.06 (docs/performance-log.md §3).
+# undisturbed runs split 1.00-1.09 (host_levels.py on its rounds; docs/performance-log.md §3).
 kUneven = 1.1
 
 
